@@ -1,0 +1,65 @@
+#include "hmt/common/files.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "hmt/common/error.h"
+
+namespace hmt {
+namespace fs = std::filesystem;
+
+void write_file_atomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& fill) {
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw OutputError("cannot create output file '" + tmp + "'");
+    try {
+      fill(out);
+    } catch (...) {
+      out.close();
+      std::remove(tmp.c_str());
+      throw;
+    }
+    out.flush();
+    if (!out) {
+      out.close();
+      std::remove(tmp.c_str());
+      throw OutputError("failed writing output file '" + path + "'");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    std::remove(tmp.c_str());
+    throw OutputError("cannot move output into place at '" + path +
+                      "': " + ec.message());
+  }
+}
+
+void write_text_atomically(const std::string& path, const std::string& text) {
+  write_file_atomically(path, [&](std::ostream& os) { os << text; });
+}
+
+void make_directories(const std::string& path) {
+  std::error_code ec;
+  fs::create_directories(path, ec);
+  if (ec || !fs::is_directory(path))
+    throw OutputError("cannot create output directory '" + path +
+                      "'" + (ec ? ": " + ec.message() : std::string()));
+}
+
+void require_readable_file(const std::string& path, const std::string& what) {
+  std::error_code ec;
+  if (!fs::exists(path, ec))
+    throw InputError(what + " '" + path + "' does not exist");
+  if (!fs::is_regular_file(path, ec))
+    throw InputError(what + " '" + path + "' is not a regular file");
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw InputError(what + " '" + path + "' cannot be opened for reading");
+}
+
+}  // namespace hmt

@@ -1,0 +1,42 @@
+#include "hmt/common/resources.h"
+
+#include <sys/resource.h>
+
+#include <cstdio>
+#include <cstring>
+
+namespace hmt {
+namespace {
+
+// Reads a "Key:   1234 kB" line of /proc/self/status; 0 if unavailable.
+size_t proc_status_kb(const char* key) {
+  FILE* f = std::fopen("/proc/self/status", "r");
+  if (!f) return 0;
+  char line[256];
+  size_t kb = 0;
+  const size_t n = std::strlen(key);
+  while (std::fgets(line, sizeof line, f)) {
+    if (std::strncmp(line, key, n) == 0) {
+      std::sscanf(line + n, " %zu", &kb);
+      break;
+    }
+  }
+  std::fclose(f);
+  return kb;
+}
+
+}  // namespace
+
+size_t peak_rss_bytes() {
+  size_t kb = proc_status_kb("VmHWM:");
+  if (kb == 0) {
+    rusage ru{};
+    getrusage(RUSAGE_SELF, &ru);
+    kb = static_cast<size_t>(ru.ru_maxrss);
+  }
+  return kb * 1024;
+}
+
+size_t current_rss_bytes() { return proc_status_kb("VmRSS:") * 1024; }
+
+}  // namespace hmt

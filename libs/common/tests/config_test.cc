@@ -1,0 +1,65 @@
+#include "hmt/common/config.h"
+
+#include <gtest/gtest.h>
+
+#include "hmt/common/error.h"
+
+namespace hmt {
+namespace {
+
+TEST(Config, ReadsValuesAndDefaults) {
+  Config c = Config::from_string(
+      "; comment\n[a]\nx = 1.5  ; trailing\nn = 3\nflag = true\nname = hi\n",
+      "t.ini");
+  EXPECT_DOUBLE_EQ(c.get_double("a", "x", 0), 1.5);
+  EXPECT_EQ(c.get_int("a", "n", 0), 3);
+  EXPECT_TRUE(c.get_bool("a", "flag", false));
+  EXPECT_EQ(c.get_string("a", "name", ""), "hi");
+  EXPECT_EQ(c.get_int("a", "missing", 9), 9);
+  EXPECT_NO_THROW(c.check_all_used());
+  EXPECT_NE(c.effective_ini().find("missing = 9"), std::string::npos);
+}
+
+TEST(Config, UnknownKeyIsAnErrorNamingKeyAndFile) {
+  Config c = Config::from_string("[a]\nx = 1\nparticels = 30\n", "my.ini");
+  c.get_double("a", "x", 0);
+  try {
+    c.check_all_used();
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("particels"), std::string::npos) << m;
+    EXPECT_NE(m.find("my.ini"), std::string::npos) << m;
+  }
+}
+
+TEST(Config, MalformedValuesAreErrors) {
+  Config c = Config::from_string("[a]\nx = 1.5abc\nn = 2.5\nb = maybe\nz = nan\n", "t.ini");
+  EXPECT_THROW(c.get_double("a", "x", 0), ConfigError);
+  EXPECT_THROW(c.get_int("a", "n", 0), ConfigError);
+  EXPECT_THROW(c.get_bool("a", "b", false), ConfigError);
+  EXPECT_THROW(c.get_double("a", "z", 0), ConfigError);
+}
+
+TEST(Config, MalformedLinesAreErrors) {
+  EXPECT_THROW(Config::from_string("[a\nx=1\n", "t"), ConfigError);
+  EXPECT_THROW(Config::from_string("[a]\njust words\n", "t"), ConfigError);
+  EXPECT_THROW(Config::from_string("x = 1\n", "t"), ConfigError);
+  EXPECT_THROW(Config::from_string("[a]\nx=1\nx=2\n", "t"), ConfigError);
+}
+
+TEST(Config, OverrideWinsAndIsChecked) {
+  Config c = Config::from_string("[a]\nx = 1\n", "t");
+  c.apply_override("a.x=2");
+  c.apply_override("b.y = 3");
+  EXPECT_DOUBLE_EQ(c.get_double("a", "x", 0), 2.0);
+  EXPECT_THROW(c.check_all_used(), ConfigError);  // b.y never read
+  EXPECT_THROW(c.apply_override("novalue"), ConfigError);
+}
+
+TEST(Config, MissingFileIsConfigError) {
+  EXPECT_THROW(Config::from_file("/nonexistent/x.ini"), ConfigError);
+}
+
+}  // namespace
+}  // namespace hmt
