@@ -1,0 +1,128 @@
+// A 2D occupancy grid stored as square tiles shared copy-on-write.
+//
+// Why tiles: in a Rao-Blackwellized filter every particle owns a map, but the
+// particles descend from common ancestors and their maps differ only where
+// they were updated since they split. Copying a grid copies only the table of
+// tile pointers; a tile is cloned the first time a shared copy is written.
+// With N particles the memory is one map plus the recently changed tiles, not
+// N full maps, and resampling costs a pointer copy per tile.
+//
+// Each cell keeps a clamped log-odds of occupancy and the running mean of the
+// laser hits that fell in it (sub-cell precision for scan matching, as in
+// GMapping's point accumulators).
+//
+// Thread safety: distinct OccupancyGrid objects may be read and written from
+// different threads even when they share tiles (the copy-on-write test is
+// synchronised through the shared_ptr reference count); one object must not
+// be written from two threads at once.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "hmt/common/pose2d.h"
+
+namespace hmt::grid {
+
+constexpr int kTileBits = 5;
+constexpr int kTileSize = 1 << kTileBits;  // cells per tile side
+constexpr int kTileMask = kTileSize - 1;
+
+struct Cell {
+  int16_t logodds = 0;  // log-odds of occupancy, scaled by kLogOddsScale
+  uint8_t hits = 0;     // laser hits seen here (saturating), for the mean
+  int8_t hx = 0;        // mean hit offset from the cell centre, in
+  int8_t hy = 0;        //   units of resolution / kHitScale
+};
+constexpr double kLogOddsScale = 100.0;
+constexpr double kHitScale = 254.0;
+
+struct Tile {
+  std::array<Cell, kTileSize * kTileSize> cells{};
+};
+
+// Integer cell coordinates; cell (i, j) covers [i*res, (i+1)*res) x [j*res, ...).
+struct CellIndex {
+  int x = 0;
+  int y = 0;
+};
+
+class OccupancyGrid {
+ public:
+  explicit OccupancyGrid(double resolution = 0.05);
+
+  double resolution() const { return resolution_; }
+
+  CellIndex cell_of(double x, double y) const {
+    return {fast_floor(x * inv_resolution_), fast_floor(y * inv_resolution_)};
+  }
+  Point2D cell_center(CellIndex c) const {
+    return {(c.x + 0.5) * resolution_, (c.y + 0.5) * resolution_};
+  }
+
+  // The cell, or nullptr when its tile was never written (unknown space).
+  const Cell* find(CellIndex c) const {
+    const Tile* t = tile_at(c.x >> kTileBits, c.y >> kTileBits);
+    return t ? &t->cells[((c.y & kTileMask) << kTileBits) | (c.x & kTileMask)]
+             : nullptr;
+  }
+  int16_t logodds(CellIndex c) const {
+    const Cell* cell = find(c);
+    return cell ? cell->logodds : 0;
+  }
+  // Mean position of the hits in an occupied cell (the centre if none).
+  Point2D hit_mean(CellIndex c, const Cell& cell) const {
+    const Point2D ctr = cell_center(c);
+    const double k = resolution_ / kHitScale;
+    return {ctr.x + cell.hx * k, ctr.y + cell.hy * k};
+  }
+
+  // Writable cell, cloning a shared tile or creating an unknown one.
+  Cell& mutable_cell(CellIndex c);
+  // Writable tile at tile coordinates (cell >> kTileBits), same rules. Lets a
+  // ray walk fetch its tile once per tile rather than once per cell.
+  Tile& mutable_tile(int tx, int ty);
+
+  // Bounds of the cells in allocated tiles: [min, max] inclusive. False if empty.
+  bool bounds(CellIndex* min, CellIndex* max) const;
+
+  // Tiles this grid points to, and the bytes they would take if unshared.
+  size_t tile_count() const;
+  size_t tile_bytes() const { return tile_count() * sizeof(Tile); }
+
+  // Visits every distinct allocated tile once (for memory accounting across
+  // many grids that share tiles).
+  template <class F>
+  void for_each_tile(F&& f) const {
+    for (const auto& t : tiles_)
+      if (t) f(t.get());
+  }
+
+  // Occupancy probability in [0,1], 0.5 for unknown.
+  double probability(CellIndex c) const;
+
+ private:
+  static int fast_floor(double v) {
+    const int i = static_cast<int>(v);
+    return i - (v < i);
+  }
+  const Tile* tile_at(int tx, int ty) const {
+    const int ix = tx - tx0_, iy = ty - ty0_;
+    if (static_cast<unsigned>(ix) >= static_cast<unsigned>(ntx_) ||
+        static_cast<unsigned>(iy) >= static_cast<unsigned>(nty_))
+      return nullptr;
+    return tiles_[static_cast<size_t>(iy) * ntx_ + ix].get();
+  }
+  void grow_to_include(int tx, int ty);
+
+  double resolution_;
+  double inv_resolution_;
+  int tx0_ = 0, ty0_ = 0;  // tile coordinates of tiles_[0]
+  int ntx_ = 0, nty_ = 0;  // table size in tiles
+  std::vector<std::shared_ptr<Tile>> tiles_;
+};
+
+}  // namespace hmt::grid

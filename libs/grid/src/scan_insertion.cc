@@ -1,0 +1,101 @@
+#include "hmt/grid/scan_insertion.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace hmt::grid {
+namespace {
+
+int16_t scaled_logit(double p) {
+  return static_cast<int16_t>(std::lround(std::log(p / (1.0 - p)) * kLogOddsScale));
+}
+
+// Walks the cells of a Bresenham line, fetching each tile once per visit.
+class RayWriter {
+ public:
+  RayWriter(OccupancyGrid& g, int16_t l_free, int16_t l_clamp)
+      : grid_(g), l_free_(l_free), l_clamp_(l_clamp) {}
+
+  Cell& cell(int x, int y) {
+    const int tx = x >> kTileBits, ty = y >> kTileBits;
+    if (!tile_ || tx != tx_ || ty != ty_) {
+      tile_ = &grid_.mutable_tile(tx, ty);
+      tx_ = tx;
+      ty_ = ty;
+    }
+    return tile_->cells[((y & kTileMask) << kTileBits) | (x & kTileMask)];
+  }
+
+  // Marks free every cell from a (inclusive) to b (exclusive).
+  void free_line(CellIndex a, CellIndex b) {
+    int x = a.x, y = a.y;
+    const int dx = std::abs(b.x - a.x), dy = -std::abs(b.y - a.y);
+    const int sx = a.x < b.x ? 1 : -1, sy = a.y < b.y ? 1 : -1;
+    int err = dx + dy;
+    while (x != b.x || y != b.y) {
+      Cell& c = cell(x, y);
+      c.logodds = static_cast<int16_t>(std::max<int>(c.logodds + l_free_, -l_clamp_));
+      const int e2 = 2 * err;
+      if (e2 >= dy) { err += dy; x += sx; }
+      if (e2 <= dx) { err += dx; y += sy; }
+    }
+  }
+
+ private:
+  OccupancyGrid& grid_;
+  int16_t l_free_, l_clamp_;
+  Tile* tile_ = nullptr;
+  int tx_ = 0, ty_ = 0;
+};
+
+}  // namespace
+
+void InsertionOptions::load(Config& cfg, const std::string& s) {
+  p_occupied = cfg.get_double(s, "p_occupied", p_occupied);
+  p_free = cfg.get_double(s, "p_free", p_free);
+  p_clamp = cfg.get_double(s, "p_clamp", p_clamp);
+  max_range = cfg.get_double(s, "max_insertion_range", max_range);
+  require(p_occupied > 0.5 && p_occupied < 1.0, s, "p_occupied", "in (0.5, 1)");
+  require(p_free > 0.0 && p_free < 0.5, s, "p_free", "in (0, 0.5)");
+  require(p_clamp > p_occupied && p_clamp < 1.0, s, "p_clamp",
+          "in (p_occupied, 1)");
+  require(max_range > 0.0, s, "max_insertion_range", "> 0");
+}
+int16_t InsertionOptions::l_occupied() const { return scaled_logit(p_occupied); }
+int16_t InsertionOptions::l_free() const { return scaled_logit(p_free); }
+int16_t InsertionOptions::l_clamp() const { return scaled_logit(p_clamp); }
+
+void insert_scan(OccupancyGrid& grid, const Pose2D& robot_pose,
+                 const LaserScan& scan, const InsertionOptions& opt) {
+  const int16_t l_occ = opt.l_occupied(), l_clamp = opt.l_clamp();
+  RayWriter ray(grid, opt.l_free(), l_clamp);
+  const Pose2D sensor = robot_pose + scan.sensor_pose;
+  const CellIndex origin = grid.cell_of(sensor.x, sensor.y);
+  const double res = grid.resolution();
+  for (size_t i = 0; i < scan.size(); ++i) {
+    if (!scan.valid[i]) continue;
+    const double r = scan.ranges[i];
+    const bool hit = r <= opt.max_range;
+    const double rr = hit ? r : opt.max_range;
+    const double a = sensor.theta + scan.bearing(i);
+    const double ex = sensor.x + rr * std::cos(a), ey = sensor.y + rr * std::sin(a);
+    const CellIndex end = grid.cell_of(ex, ey);
+    ray.free_line(origin, end);
+    if (!hit) continue;
+    Cell& c = ray.cell(end.x, end.y);
+    c.logodds = static_cast<int16_t>(std::min<int>(c.logodds + l_occ, l_clamp));
+    // Running mean of the hit position inside the cell (weight capped so the
+    // mean still follows small changes).
+    const Point2D ctr = grid.cell_center(end);
+    const double k = kHitScale / res;
+    const int px = static_cast<int>(std::lround((ex - ctr.x) * k));
+    const int py = static_cast<int>(std::lround((ey - ctr.y) * k));
+    const int n = std::min<int>(c.hits + 1, 16);
+    c.hx = static_cast<int8_t>(std::clamp(c.hx + (px - c.hx) / n, -127, 127));
+    c.hy = static_cast<int8_t>(std::clamp(c.hy + (py - c.hy) / n, -127, 127));
+    if (c.hits < 255) ++c.hits;
+  }
+}
+
+}  // namespace hmt::grid
