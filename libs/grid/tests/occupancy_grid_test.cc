@@ -72,7 +72,7 @@ TEST(ScanInsertion, HitsOccupiedRaysFree) {
 TEST(ScanInsertion, ClampsLogOdds) {
   OccupancyGrid g(0.05);
   InsertionOptions opt;
-  for (int i = 0; i < 100; ++i) insert_scan(g, Pose2D(0, 0.025, 0), fan(19, 1.0f), opt);
+  for (int i = 0; i < 100; ++i) insert_scan(g, Pose2D(0, 0.025, 0), fan(19, 1.02f), opt);
   // The robot sits on a cell centre line so the straight beam stays in row 0.
   EXPECT_EQ(g.logodds(g.cell_of(1.0 + 0.01, 0.025)), opt.l_clamp());
   EXPECT_EQ(g.logodds(g.cell_of(0.5, 0.025)), -opt.l_clamp());
