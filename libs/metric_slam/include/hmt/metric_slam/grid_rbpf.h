@@ -1,0 +1,90 @@
+// Rao-Blackwellized particle filter for grid SLAM: each particle is a robot
+// path hypothesis with the occupancy grid conditioned on it.
+//
+// Proposal (paper 002 Eq. 6, 12-13; Grisetti et al. 2007): for each particle
+// the new scan is matched against the particle's own map starting from the
+// odometry prediction; the target p(z|x,m) p(x|x',u) is evaluated on a small
+// lattice around the match, a Gaussian is fitted to it and the new pose is
+// drawn from that Gaussian; the weight is multiplied by the lattice estimate
+// of the normaliser eta = integral of p(z|x,m) p(x|x',u) dx. When matching
+// fails (too few beams explained) the particle falls back to the odometry
+// proposal, weighted by the likelihood of its sample.
+//
+// Maps share unchanged tiles between particles (see grid::OccupancyGrid), so
+// resampling and memory cost scale with what changed, not with map size.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "hmt/common/random.h"
+#include "hmt/common/sensor_data.h"
+#include "hmt/grid/occupancy_grid.h"
+#include "hmt/metric_slam/rbpf_options.h"
+#include "hmt/metric_slam/scan_matcher.h"
+#include "hmt/metric_slam/worker_pool.h"
+
+namespace hmt::metric_slam {
+
+struct Particle {
+  Pose2D pose;                 // current pose, in the current area's frame
+  grid::OccupancyGrid map;     // the map conditioned on this path
+  std::vector<Pose2D> path;    // one pose per step since the area began
+  double log_weight = 0.0;     // unnormalised
+  Pose2D last_insertion;       // pose of the last scan put into the map
+  bool inserted = false;
+};
+
+struct RbpfStats {
+  size_t steps = 0;
+  size_t resamplings = 0;
+  size_t odometry_fallbacks = 0;  // particle-steps where matching failed
+};
+
+class GridRbpf {
+ public:
+  explicit GridRbpf(const RbpfOptions& opt);
+
+  // One odometry increment followed by one scan. The first call initialises
+  // every particle at the origin with the scan as its map.
+  void process(const LogStep& step);
+
+  const std::vector<Particle>& particles() const { return particles_; }
+  size_t best_index() const;
+  const Particle& best() const { return particles_[best_index()]; }
+  // Normalised weights and their effective sample size.
+  std::vector<double> weights() const;
+  double ess() const;
+  const RbpfStats& stats() const { return stats_; }
+  const RbpfOptions& options() const { return opt_; }
+
+  // --- What the hybrid metric-topological layers use ---
+  // Enter a new area: every particle takes its current pose as the origin of
+  // a fresh map (seeded with the last scan). Returns, per particle, the new
+  // origin expressed in the frame of the area being left.
+  std::vector<Pose2D> start_new_area();
+  // Re-enter a known area: every particle gets `map` (shared, not copied) and
+  // the given pose in that map's frame (one per particle, or one for all).
+  void load_area(const grid::OccupancyGrid& map, const std::vector<Pose2D>& poses);
+
+  // Bytes of the distinct map tiles held by all particles together.
+  size_t map_memory_bytes() const;
+
+ private:
+  void initialise(const LogStep& step);
+  void move_particle(size_t i, const LogStep& step, const ScanPoints& pts,
+                     uint64_t stream_seed, bool* fallback);
+  void maybe_insert(Particle& p, const LaserScan& scan);
+  void resample_if_needed();
+
+  RbpfOptions opt_;
+  ScanMatcher matcher_;
+  MotionModel motion_;
+  Random rng_;  // resampling only; per-particle streams are derived per step
+  std::unique_ptr<WorkerPool> pool_;
+  std::vector<Particle> particles_;
+  LaserScan last_scan_;
+  RbpfStats stats_;
+};
+
+}  // namespace hmt::metric_slam

@@ -1,0 +1,43 @@
+// Options of the metric RBPF grid SLAM filter; each group has its own INI
+// section: [metric_slam], [grid], [scan_matcher], [motion_model].
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "hmt/common/config.h"
+#include "hmt/grid/scan_insertion.h"
+#include "hmt/metric_slam/motion_model.h"
+#include "hmt/metric_slam/scan_matcher.h"
+
+namespace hmt::metric_slam {
+
+enum class ProposalKind { kOptimal, kOdometry };
+
+struct RbpfOptions {
+  int particles = 30;
+  uint64_t seed = 1;
+  int threads = 0;  // worker threads; 0 = one per core
+  ProposalKind proposal = ProposalKind::kOptimal;
+  double resample_threshold = 0.5;  // resample when ESS < this * particles
+  // A particle inserts a scan into its map only after moving this far since
+  // its last insertion (both 0: every scan).
+  double map_update_distance = 0.0;
+  double map_update_angle = 0.0;
+  // Log-likelihoods are divided by this before weighting: beams are not
+  // independent, and an untempered product makes the weights collapse.
+  double likelihood_gain = 3.0;
+  // Half-widths of the 3x3x3 lattice around the scan-match mode on which the
+  // optimal proposal is evaluated (paper 002 Eq. 6, second step).
+  double sample_linear = 0.02;
+  double sample_angular = 0.01;
+
+  double resolution = 0.05;
+  grid::InsertionOptions insertion;
+  MatcherOptions matcher;
+  MotionOptions motion;
+
+  void load(Config& cfg);
+};
+
+}  // namespace hmt::metric_slam

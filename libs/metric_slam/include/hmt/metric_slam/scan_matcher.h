@@ -1,0 +1,58 @@
+// Scan-to-map matching on an occupancy grid (the likelihood field model).
+//
+// The distance from an end point to the nearest occupied cell is searched in
+// a small window of cells around it, using each cell's mean hit position for
+// sub-cell precision; a cell only counts as the wall hit if the probe one
+// cell nearer the sensor is not occupied (the beam must arrive from free
+// space). Beams with no occupied cell in the window get the window's maximum
+// distance: the field is truncated there, which makes the model robust to
+// unmapped or dynamic obstacles.
+#pragma once
+
+#include "hmt/common/config.h"
+#include "hmt/common/pose2d.h"
+#include "hmt/grid/occupancy_grid.h"
+#include "hmt/metric_slam/scan_points.h"
+
+namespace hmt::metric_slam {
+
+struct MatcherOptions {
+  double max_range = 20.0;          // beams longer than this are not matched
+  int beam_skip = 0;                // use every (skip+1)-th beam
+  int window = 1;                   // search radius in cells
+  double sigma = 0.05;              // likelihood field std dev (m)
+  double occupied_probability = 0.6;  // a cell above this is an obstacle
+  double linear_step = 0.05;        // initial hill-climbing steps
+  double angular_step = 0.05;
+  int refinements = 5;              // step halvings
+  double min_match_ratio = 0.2;     // below: matching failed, use odometry
+
+  void load(Config& cfg, const std::string& section = "scan_matcher");
+};
+
+struct MatchScore {
+  double log_likelihood = 0.0;  // sum over beams of -d^2 / (2 sigma^2)
+  int matched = 0;              // beams with an obstacle in the window
+};
+
+class ScanMatcher {
+ public:
+  explicit ScanMatcher(const MatcherOptions& opt);
+
+  MatchScore score(const grid::OccupancyGrid& map, const Pose2D& pose,
+                   const ScanPoints& scan) const;
+
+  // Hill climbing from `start` (GMapping-style: try +-x, +-y, +-theta, take
+  // the best, halve the steps when nothing improves).
+  Pose2D optimize(const grid::OccupancyGrid& map, const Pose2D& start,
+                  const ScanPoints& scan, MatchScore* best) const;
+
+  const MatcherOptions& options() const { return opt_; }
+
+ private:
+  MatcherOptions opt_;
+  int16_t occ_threshold_;
+  double inv_2sigma2_;
+};
+
+}  // namespace hmt::metric_slam

@@ -1,0 +1,22 @@
+// A scan prepared once per step for every particle: the end points used for
+// matching, in the robot frame, each with the point one cell nearer the
+// sensor (the "free" probe that tells the near side of a wall from the far).
+#pragma once
+
+#include <vector>
+
+#include "hmt/common/pose2d.h"
+#include "hmt/common/sensor_data.h"
+
+namespace hmt::metric_slam {
+
+struct ScanPoints {
+  std::vector<Point2D> hit;   // end points, robot frame
+  std::vector<Point2D> free;  // one `free_step` back along each beam
+};
+
+// Keeps valid beams with range <= max_range, every (skip+1)-th beam.
+ScanPoints prepare_scan(const LaserScan& scan, double max_range, int skip,
+                        double free_step);
+
+}  // namespace hmt::metric_slam

@@ -1,0 +1,242 @@
+#include "hmt/metric_slam/grid_rbpf.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <thread>
+#include <unordered_set>
+
+#include "hmt/common/error.h"
+#include "hmt/grid/scan_insertion.h"
+
+namespace hmt::metric_slam {
+namespace {
+
+// Decorrelates (seed, step, particle) into a stream seed (splitmix64).
+uint64_t mix(uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+double log_sum_exp(const std::vector<double>& v) {
+  const double m = *std::max_element(v.begin(), v.end());
+  if (!std::isfinite(m)) return m;
+  double s = 0.0;
+  for (double x : v) s += std::exp(x - m);
+  return m + std::log(s);
+}
+
+int thread_count(int requested) {
+  if (requested > 0) return requested;
+  const unsigned hc = std::thread::hardware_concurrency();
+  return hc ? static_cast<int>(hc) : 1;
+}
+
+}  // namespace
+
+GridRbpf::GridRbpf(const RbpfOptions& opt)
+    : opt_(opt),
+      matcher_(opt.matcher),
+      motion_(opt.motion),
+      rng_(opt.seed),
+      pool_(std::make_unique<WorkerPool>(thread_count(opt.threads))) {}
+
+void GridRbpf::initialise(const LogStep& step) {
+  Particle p;
+  p.map = grid::OccupancyGrid(opt_.resolution);
+  grid::insert_scan(p.map, p.pose, step.scan, opt_.insertion);
+  p.inserted = true;
+  p.last_insertion = p.pose;
+  p.path.push_back(p.pose);
+  // Every particle starts from the same map: the copies share its tiles.
+  particles_.assign(static_cast<size_t>(opt_.particles), p);
+}
+
+void GridRbpf::maybe_insert(Particle& p, const LaserScan& scan) {
+  const Pose2D d = p.pose - p.last_insertion;
+  if (p.inserted && d.norm() < opt_.map_update_distance &&
+      std::fabs(d.theta) < opt_.map_update_angle)
+    return;
+  grid::insert_scan(p.map, p.pose, scan, opt_.insertion);
+  p.last_insertion = p.pose;
+  p.inserted = true;
+}
+
+void GridRbpf::move_particle(size_t i, const LogStep& step, const ScanPoints& pts,
+                             uint64_t stream_seed, bool* fallback) {
+  Particle& p = particles_[i];
+  Random rng(stream_seed);
+  const Pose2D& u = step.odometry_increment;
+  const Pose2D prior = p.pose + u;
+  const double gain = opt_.likelihood_gain;
+  const size_t n = pts.hit.size();
+  *fallback = true;
+
+  if (opt_.proposal == ProposalKind::kOptimal && n > 0) {
+    MatchScore ms;
+    const Pose2D mode = matcher_.optimize(p.map, prior, pts, &ms);
+    if (ms.matched >= opt_.matcher.min_match_ratio * static_cast<double>(n)) {
+      // Target p(z|x,m) p(x|x',u) on a 3x3x3 lattice around the mode.
+      const MotionSigmas sg = motion_.sigmas(u);
+      const double log_norm_motion =
+          -1.5 * std::log(2 * M_PI) - 2 * std::log(sg.xy) - std::log(sg.theta);
+      const double dl = opt_.sample_linear, da = opt_.sample_angular;
+      std::vector<double> logt;
+      std::vector<Eigen::Vector3d> offs;
+      logt.reserve(27);
+      offs.reserve(27);
+      for (int a = -1; a <= 1; ++a)
+        for (int y = -1; y <= 1; ++y)
+          for (int x = -1; x <= 1; ++x) {
+            const Pose2D xj(mode.x + x * dl, mode.y + y * dl,
+                            wrap_angle(mode.theta + a * da));
+            const double ll = matcher_.score(p.map, xj, pts).log_likelihood;
+            logt.push_back(ll / gain + log_norm_motion +
+                           motion_.log_density(p.pose, u, xj));
+            offs.emplace_back(x * dl, y * dl, a * da);
+          }
+      const double log_eta = log_sum_exp(logt);
+      if (std::isfinite(log_eta)) {
+        Eigen::Vector3d mu = Eigen::Vector3d::Zero();
+        Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+        for (size_t j = 0; j < logt.size(); ++j) mu += std::exp(logt[j] - log_eta) * offs[j];
+        for (size_t j = 0; j < logt.size(); ++j) {
+          const Eigen::Vector3d d = offs[j] - mu;
+          cov += std::exp(logt[j] - log_eta) * d * d.transpose();
+        }
+        // The lattice cannot resolve spreads much below its spacing; keep
+        // the Gaussian at least that wide so sampling stays well-posed.
+        cov.diagonal() += Eigen::Vector3d(1e-3 * dl * dl, 1e-3 * dl * dl, 1e-3 * da * da);
+        const Eigen::Matrix3d L = cov.llt().matrixL();
+        const Eigen::Vector3d z(rng.normal(), rng.normal(), rng.normal());
+        const Eigen::Vector3d d = mu + L * z;
+        p.pose = Pose2D(mode.x + d.x(), mode.y + d.y(), wrap_angle(mode.theta + d.z()));
+        // eta = sum_j tau_j * (lattice cell volume)
+        p.log_weight += log_eta + std::log(dl * dl * da);
+        *fallback = false;
+      }
+    }
+  }
+  if (*fallback) {
+    p.pose = motion_.sample(p.pose, u, rng);
+    if (n > 0) p.log_weight += matcher_.score(p.map, p.pose, pts).log_likelihood / gain;
+  }
+  p.path.push_back(p.pose);
+  maybe_insert(p, step.scan);
+}
+
+void GridRbpf::process(const LogStep& step) {
+  last_scan_ = step.scan;
+  if (particles_.empty()) {
+    initialise(step);
+    ++stats_.steps;
+    return;
+  }
+  const ScanPoints pts =
+      prepare_scan(step.scan, opt_.matcher.max_range, opt_.matcher.beam_skip,
+                   opt_.resolution);
+  const uint64_t step_seed = mix(opt_.seed ^ mix(stats_.steps));
+  std::vector<char> fell_back(particles_.size(), 0);
+  pool_->parallel_for(particles_.size(), [&](size_t i) {
+    bool fb = false;
+    move_particle(i, step, pts, mix(step_seed ^ (i * 0x632be59bd9b4e019ULL)), &fb);
+    fell_back[i] = fb;
+  });
+  for (char f : fell_back) stats_.odometry_fallbacks += (f != 0);
+  ++stats_.steps;
+  resample_if_needed();
+}
+
+std::vector<double> GridRbpf::weights() const {
+  std::vector<double> lw(particles_.size());
+  for (size_t i = 0; i < particles_.size(); ++i) lw[i] = particles_[i].log_weight;
+  const double z = log_sum_exp(lw);
+  for (double& w : lw) w = std::exp(w - z);
+  return lw;
+}
+
+double GridRbpf::ess() const {
+  double s = 0.0;
+  for (double w : weights()) s += w * w;
+  return s > 0 ? 1.0 / s : 0.0;
+}
+
+size_t GridRbpf::best_index() const {
+  size_t best = 0;
+  for (size_t i = 1; i < particles_.size(); ++i)
+    if (particles_[i].log_weight > particles_[best].log_weight) best = i;
+  return best;
+}
+
+void GridRbpf::resample_if_needed() {
+  const std::vector<double> w = weights();
+  double s2 = 0.0;
+  for (double x : w) s2 += x * x;
+  const double n = static_cast<double>(w.size());
+  if (1.0 / s2 >= opt_.resample_threshold * n) {
+    // Keep log weights near zero so they never overflow on long runs.
+    const double top = particles_[best_index()].log_weight;
+    for (auto& p : particles_) p.log_weight -= top;
+    return;
+  }
+  // Systematic (low-variance) resampling.
+  std::vector<Particle> next;
+  next.reserve(particles_.size());
+  const double step = 1.0 / n;
+  double u = rng_.uniform() * step, c = w[0];
+  size_t i = 0;
+  for (size_t k = 0; k < w.size(); ++k) {
+    while (u > c && i + 1 < w.size()) c += w[++i];
+    next.push_back(particles_[i]);  // maps share tiles; paths are copied
+    next.back().log_weight = 0.0;
+    u += step;
+  }
+  particles_ = std::move(next);
+  ++stats_.resamplings;
+}
+
+std::vector<Pose2D> GridRbpf::start_new_area() {
+  if (particles_.empty())
+    throw Error(ExitCode::kInternal, "start_new_area() before the first scan");
+  std::vector<Pose2D> origins;
+  origins.reserve(particles_.size());
+  grid::OccupancyGrid fresh(opt_.resolution);
+  grid::insert_scan(fresh, Pose2D(), last_scan_, opt_.insertion);
+  for (auto& p : particles_) {
+    origins.push_back(p.pose);
+    p.pose = Pose2D();
+    p.map = fresh;
+    p.path.assign(1, p.pose);
+    p.last_insertion = p.pose;
+    p.inserted = true;
+  }
+  return origins;
+}
+
+void GridRbpf::load_area(const grid::OccupancyGrid& map,
+                         const std::vector<Pose2D>& poses) {
+  if (particles_.empty())
+    throw Error(ExitCode::kInternal, "load_area() before the first scan");
+  if (poses.size() != 1 && poses.size() != particles_.size())
+    throw Error(ExitCode::kInternal, "load_area(): need one pose or one per particle");
+  for (size_t i = 0; i < particles_.size(); ++i) {
+    Particle& p = particles_[i];
+    p.map = map;
+    p.pose = poses.size() == 1 ? poses[0] : poses[i];
+    p.path.assign(1, p.pose);
+    p.last_insertion = p.pose;
+    p.inserted = true;
+  }
+}
+
+size_t GridRbpf::map_memory_bytes() const {
+  std::unordered_set<const grid::Tile*> tiles;
+  for (const auto& p : particles_)
+    p.map.for_each_tile([&](const grid::Tile* t) { tiles.insert(t); });
+  return tiles.size() * sizeof(grid::Tile);
+}
+
+}  // namespace hmt::metric_slam

@@ -1,0 +1,25 @@
+#include "hmt/metric_slam/scan_points.h"
+
+#include <cmath>
+
+namespace hmt::metric_slam {
+
+ScanPoints prepare_scan(const LaserScan& scan, double max_range, int skip,
+                        double free_step) {
+  ScanPoints out;
+  out.hit.reserve(scan.size());
+  out.free.reserve(scan.size());
+  const Pose2D& s = scan.sensor_pose;
+  for (size_t i = 0; i < scan.size(); i += static_cast<size_t>(skip) + 1) {
+    if (!scan.valid[i]) continue;
+    const double r = scan.ranges[i];
+    if (!(r > 0.0) || r > max_range) continue;
+    const double a = scan.bearing(i);
+    const double c = std::cos(a), sn = std::sin(a);
+    out.hit.push_back(s.transform({r * c, r * sn}));
+    out.free.push_back(s.transform({(r - free_step) * c, (r - free_step) * sn}));
+  }
+  return out;
+}
+
+}  // namespace hmt::metric_slam

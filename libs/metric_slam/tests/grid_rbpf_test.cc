@@ -1,0 +1,111 @@
+#include "hmt/metric_slam/grid_rbpf.h"
+
+#include <gtest/gtest.h>
+
+#include "sim_world.h"
+
+namespace hmt::metric_slam {
+namespace {
+
+// A loop around the inner wall of the simulated office.
+testing_sim::SimRun loop_run(uint64_t seed) {
+  return testing_sim::simulate({{2, 2, 0}, {6, 2, 0}, {6, 8, 0}, {12, 8, 0},
+                                {12, 3, 0}, {18, 3, 0}, {18, 8, 0}, {10, 8.5, 0},
+                                {2, 8, 0}, {2, 2, 0}},
+                               0.3, seed, 0.08);
+}
+
+Pose2D dead_reckoning(const testing_sim::SimRun& run) {
+  Pose2D p = run.truth.front();
+  for (size_t i = 1; i < run.log.steps.size(); ++i) p = p + run.log.steps[i].odometry_increment;
+  return p;
+}
+
+RbpfOptions small_filter(int threads) {
+  RbpfOptions o;
+  o.particles = 10;
+  o.threads = threads;
+  o.seed = 5;
+  return o;
+}
+
+TEST(GridRbpf, TracksBetterThanOdometry) {
+  const auto run = loop_run(11);
+  GridRbpf f(small_filter(2));
+  for (const auto& st : run.log.steps) f.process(st);
+  EXPECT_EQ(f.stats().steps, run.log.steps.size());
+  // Estimates are relative to the first pose.
+  const Pose2D est = run.truth.front() + f.best().pose;
+  const Pose2D truth = run.truth.back();
+  const Pose2D odo = dead_reckoning(run);
+  const double err = std::hypot(est.x - truth.x, est.y - truth.y);
+  const double odo_err = std::hypot(odo.x - truth.x, odo.y - truth.y);
+  EXPECT_LT(err, 0.15) << "odometry error was " << odo_err;
+  EXPECT_LT(err, odo_err);
+  EXPECT_EQ(f.best().path.size(), run.log.steps.size());
+}
+
+TEST(GridRbpf, DeterministicWhateverTheThreadCount) {
+  const auto run = loop_run(12);
+  GridRbpf a(small_filter(1)), b(small_filter(3));
+  for (const auto& st : run.log.steps) {
+    a.process(st);
+    b.process(st);
+  }
+  ASSERT_EQ(a.best_index(), b.best_index());
+  const auto& pa = a.best().path;
+  const auto& pb = b.best().path;
+  ASSERT_EQ(pa.size(), pb.size());
+  for (size_t i = 0; i < pa.size(); ++i) {
+    EXPECT_EQ(pa[i].x, pb[i].x);
+    EXPECT_EQ(pa[i].theta, pb[i].theta);
+  }
+}
+
+TEST(GridRbpf, ParticlesShareMapMemory) {
+  const auto run = loop_run(13);
+  RbpfOptions o = small_filter(2);
+  o.particles = 30;
+  GridRbpf f(o);
+  for (const auto& st : run.log.steps) f.process(st);
+  size_t unshared = 0;
+  for (const auto& p : f.particles()) unshared += p.map.tile_bytes();
+  // Distinct tiles are far fewer than 30 private maps would need.
+  EXPECT_LT(f.map_memory_bytes() * 3, unshared);
+}
+
+TEST(GridRbpf, OdometryProposalStillRuns) {
+  const auto run = loop_run(14);
+  RbpfOptions o = small_filter(1);
+  o.proposal = ProposalKind::kOdometry;
+  GridRbpf f(o);
+  for (const auto& st : run.log.steps) f.process(st);
+  EXPECT_EQ(f.stats().odometry_fallbacks, (run.log.steps.size() - 1) * 10);
+}
+
+TEST(GridRbpf, NewAreaAndReloadInterface) {
+  const auto run = loop_run(15);
+  GridRbpf f(small_filter(1));
+  for (size_t i = 0; i < 20; ++i) f.process(run.log.steps[i]);
+  const grid::OccupancyGrid first_area = f.best().map;
+  const Pose2D before = f.best().pose;
+  const auto origins = f.start_new_area();
+  ASSERT_EQ(origins.size(), f.particles().size());
+  for (const auto& p : f.particles()) {
+    EXPECT_EQ(p.pose.x, 0.0);
+    EXPECT_EQ(p.path.size(), 1u);
+    EXPECT_LT(p.map.tile_count(), first_area.tile_count() + 1);
+  }
+  EXPECT_NEAR(origins[f.best_index()].x, before.x, 1e-12);
+  f.load_area(first_area, {before});
+  for (const auto& p : f.particles()) {
+    EXPECT_EQ(p.pose.x, before.x);
+    EXPECT_EQ(p.map.tile_count(), first_area.tile_count());
+  }
+  // Keeps working in the reloaded map.
+  for (size_t i = 20; i < 30; ++i) f.process(run.log.steps[i]);
+  EXPECT_EQ(f.best().path.size(), 11u);
+}
+
+}  // namespace
+}  // namespace hmt::metric_slam

@@ -1,0 +1,114 @@
+// A tiny simulated world for tests: walls as line segments, exact ray casting,
+// a robot driven along way-points, noisy odometry.
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "hmt/common/random.h"
+#include "hmt/common/sensor_data.h"
+
+namespace hmt::testing_sim {
+
+struct Segment {
+  double x0, y0, x1, y1;
+};
+
+// A 20 x 10 m room with an inner wall and a few boxes (not symmetric, so
+// scan matching is well constrained).
+inline std::vector<Segment> office_world() {
+  std::vector<Segment> w = {{0, 0, 20, 0}, {20, 0, 20, 10}, {20, 10, 0, 10},
+                            {0, 10, 0, 0},  {8, 0, 8, 6},    {8, 6, 9, 6},
+                            {9, 6, 9, 0}};
+  auto box = [&](double x, double y, double s) {
+    w.push_back({x, y, x + s, y});
+    w.push_back({x + s, y, x + s, y + s});
+    w.push_back({x + s, y + s, x, y + s});
+    w.push_back({x, y + s, x, y});
+  };
+  box(3, 7, 0.8);
+  box(14, 2, 1.2);
+  box(16.5, 7.5, 0.6);
+  box(11, 8, 0.5);
+  return w;
+}
+
+inline LaserScan cast_scan(const std::vector<Segment>& world, const Pose2D& pose,
+                           int beams, double fov, double max_range, Random* noise,
+                           double sigma) {
+  LaserScan s;
+  s.angle_min = static_cast<float>(-fov / 2);
+  s.angle_increment = static_cast<float>(fov / (beams - 1));
+  s.max_range = static_cast<float>(max_range);
+  for (int i = 0; i < beams; ++i) {
+    const double a = pose.theta + s.bearing(i);
+    const double dx = std::cos(a), dy = std::sin(a);
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& g : world) {
+      const double ex = g.x1 - g.x0, ey = g.y1 - g.y0;
+      const double den = dx * ey - dy * ex;
+      if (std::fabs(den) < 1e-12) continue;
+      const double wx = g.x0 - pose.x, wy = g.y0 - pose.y;
+      const double t = (wx * ey - wy * ex) / den;
+      const double u = (wx * dy - wy * dx) / den;
+      if (t > 0 && u >= 0 && u <= 1) best = std::min(best, t);
+    }
+    const bool ok = best < max_range;
+    double r = ok ? best : max_range;
+    if (ok && noise) r += noise->normal(0, sigma);
+    s.ranges.push_back(static_cast<float>(r));
+    s.valid.push_back(ok ? 1 : 0);
+  }
+  return s;
+}
+
+struct SimRun {
+  std::vector<Pose2D> truth;
+  Log log;
+};
+
+// Drives through the way-points at `step` metres per scan, with odometry
+// noise proportional to the motion.
+inline SimRun simulate(const std::vector<Pose2D>& waypoints, double step,
+                       uint64_t seed, double odo_noise = 0.05) {
+  const auto world = office_world();
+  Random rng(seed);
+  SimRun run;
+  Pose2D pose = waypoints.front();
+  Pose2D prev = pose;
+  auto emit = [&](bool first) {
+    LogStep st;
+    st.timestamp = static_cast<double>(run.truth.size());
+    st.scan = cast_scan(world, pose, 181, M_PI, 30.0, &rng, 0.01);
+    st.scan.timestamp = st.timestamp;
+    if (!first) {
+      const Pose2D u = pose - prev;
+      const double d = u.norm();
+      st.odometry_increment = Pose2D(u.x + rng.normal(0, odo_noise * d),
+                                     u.y + rng.normal(0, odo_noise * d),
+                                     u.theta + rng.normal(0, odo_noise * (d + std::fabs(u.theta))));
+      st.has_odometry = true;
+    }
+    run.truth.push_back(pose);
+    run.log.steps.push_back(st);
+    prev = pose;
+  };
+  emit(true);
+  for (size_t k = 1; k < waypoints.size(); ++k) {
+    const Pose2D& target = waypoints[k];
+    for (;;) {
+      const double dx = target.x - pose.x, dy = target.y - pose.y;
+      const double dist = std::hypot(dx, dy);
+      if (dist < 1e-9) break;
+      const double heading = std::atan2(dy, dx);
+      const double adv = std::min(step, dist);
+      pose = Pose2D(pose.x + adv * std::cos(heading), pose.y + adv * std::sin(heading),
+                    heading);
+      emit(false);
+    }
+  }
+  return run;
+}
+
+}  // namespace hmt::testing_sim
