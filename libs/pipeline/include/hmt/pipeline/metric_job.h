@@ -1,0 +1,51 @@
+// The `hmt-slam run` job for the metric layer: a whole log through the
+// RBPF grid SLAM filter, then the map, trajectory, effective configuration
+// and a summary written into the output folder.
+#pragma once
+
+#include <string>
+
+#include "hmt/common/config.h"
+#include "hmt/common/sensor_data.h"
+#include "hmt/metric_slam/rbpf_options.h"
+
+namespace hmt::pipeline {
+
+struct InputOptions {
+  std::string log;     // path; relative paths are taken from the config file's folder
+  int max_steps = 0;   // 0 = the whole log
+  void load(Config& cfg, const std::string& config_dir);
+};
+
+struct OutputOptions {
+  bool png = true;
+  bool pgm = true;
+  int map_margin = 10;  // cells of unknown border around the map image
+  void load(Config& cfg);
+};
+
+struct JobOptions {
+  InputOptions input;
+  OutputOptions output;
+  metric_slam::RbpfOptions rbpf;
+};
+
+// Reads every option of every component from `cfg`, then fails on any key
+// no component read. `config_dir` resolves relative input paths.
+JobOptions load_job_options(Config& cfg, const std::string& config_dir);
+
+struct JobSummary {
+  size_t scans = 0;
+  double wall_time_s = 0.0;
+  size_t peak_rss_bytes = 0;
+  Pose2D final_pose;
+  std::string map_png;  // path of the map image, if written
+};
+
+// Runs the filter over `log` and writes the outputs into `out_dir`.
+// `show_progress` draws progress on stderr.
+JobSummary run_metric_job(const JobOptions& opt, const Log& log,
+                          const Config& cfg, const std::string& out_dir,
+                          bool show_progress);
+
+}  // namespace hmt::pipeline
