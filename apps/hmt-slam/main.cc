@@ -11,7 +11,7 @@
 #include "hmt/common/config.h"
 #include "hmt/common/error.h"
 #include "hmt/io/log_reader.h"
-#include "hmt/io/rawlog_writer.h"
+#include "hmt/io/rawlog.h"
 #include "hmt/pipeline/metric_job.h"
 
 namespace {
