@@ -1,0 +1,60 @@
+// MRPT rawlogs (binary, optionally gzip-compressed) <-> the internal stream.
+//
+// Both rawlog layouts are read:
+//  - Actions/SensoryFrame: CActionCollection (odometry as a
+//    CActionRobotMovement2D increment) alternating with CSensoryFrame (the
+//    observations taken at one robot pose);
+//  - observations only: a time-ordered sequence of CObservation objects,
+//    odometry arriving as CObservationOdometry (absolute dead-reckoning pose).
+// Every CObservation2DRangeScan becomes one hmt::LogStep, in file order;
+// other observation types (images, sonar, GPS...) are skipped.
+#pragma once
+
+#include <string>
+
+#include "hmt/common/sensor_data.h"
+
+namespace hmt::io {
+
+// Reads a rawlog (gzip or plain). Throws hmt::InputError with a one-line
+// message naming the file (and the entry / scan index where it applies) when
+// the file is missing, empty, not a rawlog, truncated, holds no 2D scans,
+// holds scans but no odometry, or holds NaN / negative / zero-beam scans.
+//
+// Conventions of the result (see sensor_data.h):
+//  - angle_increment >= 0 always: scans stored left-to-right, or taken by a
+//    sensor mounted upside down, are reversed so bearings increase;
+//  - a reading is valid iff MRPT flags it valid, it is > 0 and < maxRange;
+//    +inf readings are no-returns (stored as maxRange), NaN is an error;
+//  - sensor_pose is the planar part (x, y, yaw) of the scan's sensorPose.
+//
+// Limitation: the objects are decoded by MRPT's own deserializers, and a few
+// of them do not check what they read. A file damaged *inside* an object
+// (flipped bits, not truncation) can therefore crash MRPT 2.5.8: e.g. a
+// CActionRobotMovement2D whose estimation method is corrupted reads its PDF
+// as whatever object follows and dereferences a null pointer. Truncated
+// files, garbage and wrong object types are caught.
+hmt::Log read_rawlog(const std::string& path);
+
+enum class RawlogFormat { kActionsSensoryFrames, kObservationsOnly };
+
+// Writes `log` as an MRPT rawlog, gzip-compressed iff `path` ends in ".gz",
+// atomically (temporary file + rename). Scans get sensorLabel "LASER",
+// odometry "ODOMETRY"; timestamps are kept (to 100 ns, MRPT's resolution).
+//  - kActionsSensoryFrames: per step a CActionCollection holding a
+//    CActionRobotMovement2D made from the increment with MRPT's default
+//    Gaussian motion model (none before the first step), then a
+//    CSensoryFrame holding the scan;
+//  - kObservationsOnly: per step a CObservationOdometry with the accumulated
+//    pose (the first step at the origin), then the CObservation2DRangeScan.
+// MRPT scans are symmetric about the sensor's x axis. A scan whose beams are
+// not (CARMEN's 180 beams run from -90 to +89 degrees) is written with the
+// sensor yaw turned by the asymmetry: every beam keeps its direction in the
+// robot frame, but reading it back splits that direction differently between
+// sensor_pose.theta and angle_min.
+// Throws hmt::OutputError if the file cannot be written (nothing is left
+// behind then), or if the log holds a step that cannot be represented.
+void write_rawlog(const hmt::Log& log, const std::string& path,
+                  RawlogFormat format);
+
+}  // namespace hmt::io

@@ -1,0 +1,53 @@
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "hmt/common/error.h"
+#include "hmt/common/files.h"
+#include "hmt/io/log_reader.h"
+#include "rawlog_reader.h"
+#include "text_file.h"
+
+namespace hmt::io {
+namespace {
+
+// Message names of CARMEN logs (carmen/src/logger), any of which may open one.
+constexpr std::string_view kCarmenMessages[] = {
+    "FLASER",     "RLASER",      "LASER3",      "LASER4",     "RAWLASER1",
+    "RAWLASER2",  "RAWLASER3",   "RAWLASER4",   "ROBOTLASER1", "ROBOTLASER2",
+    "ODOM",       "TRUEPOS",     "PARAM",       "SYNC",       "NMEAGGA",
+    "NMEARMC",    "SONAR",       "BUMPER",      "SCANMARK",   "POSITIONLASER",
+    "IMU",        "VECTORMOVE",  "ROBOTVELOCITY", "BASEVELOCITY",
+    "FOLLOWTRAJECTORY", "GPSNMEA", "OLDLASER",  "REARLASER",  "FRONTLASER"};
+
+bool looks_like_carmen(std::string_view head) {
+  const size_t start = head.find_first_not_of(" \t\r\n");
+  if (start == std::string_view::npos) return false;
+  head.remove_prefix(start);
+  if (head[0] == '#') return true;
+  const size_t end = head.find_first_of(" \t\r\n");
+  const std::string_view first = head.substr(0, end);
+  for (std::string_view m : kCarmenMessages)
+    if (first == m) return true;
+  return false;
+}
+
+}  // namespace
+
+LogFormat detect_log_format(const std::string& path) {
+  require_readable_file(path, "input log");
+  if (std::filesystem::file_size(path) == 0)
+    throw InputError("input log '" + path + "' is empty");
+  // A rawlog starts with a binary object header, so a few KB of text that
+  // begin with a CARMEN message are decisive.
+  return looks_like_carmen(detail::read_file_head(path, 4096))
+             ? LogFormat::kCarmen
+             : LogFormat::kRawlog;
+}
+
+hmt::Log read_log(const std::string& path) {
+  if (detect_log_format(path) == LogFormat::kCarmen) return read_carmen(path);
+  return detail::read_rawlog(path, /*chosen_by_content=*/true);
+}
+
+}  // namespace hmt::io
