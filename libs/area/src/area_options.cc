@@ -1,0 +1,72 @@
+#include "hmt/area/area_options.h"
+
+#include <cmath>
+
+#include "hmt/common/config.h"
+#include "hmt/common/error.h"
+
+namespace hmt::area {
+
+SplitMethod parse_split_method(const std::string& text,
+                               const std::string& section,
+                               const std::string& key) {
+  if (text == "mean") return SplitMethod::kMean;
+  if (text == "sign") return SplitMethod::kSign;
+  if (text == "sweep") return SplitMethod::kSweep;
+  throw ConfigError("[" + section + "] " + key + " = '" + text +
+                    "': must be one of mean, sign, sweep");
+}
+
+const char* to_string(SplitMethod m) {
+  switch (m) {
+    case SplitMethod::kMean:
+      return "mean";
+    case SplitMethod::kSign:
+      return "sign";
+    case SplitMethod::kSweep:
+      return "sweep";
+  }
+  return "mean";
+}
+
+void AreaOptions::load(Config& cfg, const std::string& s) {
+  sso.delta = cfg.get_double(s, "delta", sso.delta);
+  sso.use_probabilistic =
+      cfg.get_bool(s, "use_probabilistic", sso.use_probabilistic);
+  sso.beta = cfg.get_double(s, "beta", sso.beta);
+  sso.range_std = cfg.get_double(s, "range_std", sso.range_std);
+  sso.bearing_std = cfg.get_double(s, "bearing_std", sso.bearing_std);
+  sso.gate = cfg.get_double(s, "gate", sso.gate);
+  sso.descriptor_threshold =
+      cfg.get_double(s, "descriptor_threshold", sso.descriptor_threshold);
+  partition.tau = cfg.get_double(s, "tau", partition.tau);
+  partition.min_cluster_size =
+      cfg.get_int(s, "min_cluster_size", partition.min_cluster_size);
+  partition.split_method = parse_split_method(
+      cfg.get_string(s, "split_method", to_string(partition.split_method)), s,
+      "split_method");
+  min_sso = cfg.get_double(s, "min_sso", min_sso);
+  window_size = cfg.get_int(s, "window_size", window_size);
+  index_cell_size = cfg.get_double(s, "index_cell_size", index_cell_size);
+  validate(s);
+}
+
+void AreaOptions::validate(const std::string& s) const {
+  require(sso.delta > 0.0, s, "delta", "> 0 (metres)");
+  require(sso.beta >= 0.0 && sso.beta < 1.0, s, "beta",
+          "in [0, 1) radians (0: the scan's own angular step)");
+  require(sso.range_std >= 0.0, s, "range_std", ">= 0 (metres)");
+  require(sso.bearing_std >= 0.0, s, "bearing_std", ">= 0 (radians)");
+  require(sso.gate > 0.0, s, "gate",
+          "> 0 (a chi-square threshold on the squared Mahalanobis distance)");
+  require(sso.descriptor_threshold >= 0.0, s, "descriptor_threshold",
+          ">= 0 (0 ignores descriptors)");
+  require(partition.tau >= 0.0 && partition.tau <= 2.0, s, "tau",
+          "in [0, 2] (the range of the normalized cut)");
+  require(partition.min_cluster_size >= 1, s, "min_cluster_size", ">= 1");
+  require(min_sso >= 0.0 && min_sso < 1.0, s, "min_sso", "in [0, 1)");
+  require(window_size >= 2, s, "window_size", ">= 2");
+  require(index_cell_size > 0.0, s, "index_cell_size", "> 0 (metres)");
+}
+
+}  // namespace hmt::area

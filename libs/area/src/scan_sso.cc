@@ -1,0 +1,90 @@
+#include "hmt/area/scan_sso.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hmt::area {
+
+bool is_valid_return(const LaserScan& scan, size_t i) {
+  if (i < scan.valid.size() && !scan.valid[i]) return false;
+  const float r = scan.ranges[i];
+  return std::isfinite(r) && r > 0.0f &&
+         (scan.max_range <= 0.0f || r < scan.max_range);
+}
+
+PreparedScan::PreparedScan(const LaserScan& scan, const SsoOptions& options) {
+  const double beta =
+      options.beta > 0.0 ? options.beta : std::fabs(scan.angle_increment);
+  const Eigen::Matrix2d Rs = rotation(scan.sensor_pose.theta);
+  points_.reserve(scan.size());
+  ranges_.reserve(scan.size());
+  covs_.reserve(scan.size());
+  for (size_t i = 0; i < scan.size(); ++i) {
+    if (!is_valid_return(scan, i)) continue;
+    const double r = scan.ranges[i];
+    const double phi = scan.bearing(i);
+    points_.push_back(
+        scan.sensor_pose.transform({r * std::cos(phi), r * std::sin(phi)}));
+    ranges_.push_back(r);
+    const double sf = r * beta;
+    Eigen::Matrix2d c =
+        Rs * range_bearing_cov(r, phi, options.range_std, options.bearing_std) *
+        Rs.transpose();
+    c.diagonal().array() += sf * sf;
+    covs_.push_back(c);
+    max_var_ = std::max(max_var_, max_eigenvalue(c));
+  }
+  grid_ = PointGrid(points_, 2.0 * options.delta);
+}
+
+double scan_match_ratio(const PreparedScan& a, const PoseGaussian& pose_a,
+                        const PreparedScan& b, const PoseGaussian& pose_b,
+                        const SsoOptions& options) {
+  if (a.empty()) return 0.0;
+  if (b.empty()) return 0.0;
+  // A seen from B: moves A's robot-frame points into B's frame.
+  const PoseGaussian q = relative_pose(pose_a, pose_b);
+  size_t matched = 0;
+  if (!options.use_probabilistic) {
+    for (const Point2D& p : a.points())
+      if (b.grid().any_within(q.mean.transform(p), options.delta)) ++matched;
+  } else {
+    const auto& bcov = b.point_covs();
+    for (size_t i = 0; i < a.size(); ++i) {
+      const Point2D& s = a.points()[i];
+      const Point2D p = q.mean.transform(s);
+      Eigen::Matrix2d Cp = compose_point_cov(q, s, a.point_covs()[i]);
+      Cp.diagonal().array() += kVarianceFloor;
+      // No point of B farther than this can pass the gate: d^2 >= |d|^2 /
+      // lambda_max(Cp + Cb) and lambda_max(Cp + Cb) <= lambda_max(Cp) +
+      // max_j lambda_max(Cb_j).
+      const double radius =
+          std::sqrt(options.gate *
+                    (max_eigenvalue(Cp) + b.max_point_var() + kVarianceFloor));
+      const double r2 = radius * radius;
+      const bool hit =
+          b.grid().any_near(p, radius, [&](const Point2D& bp, uint32_t j) {
+            const Eigen::Vector2d d(p.x - bp.x, p.y - bp.y);
+            if (d.squaredNorm() > r2) return false;
+            return mahalanobis2(d, Cp + bcov[j]) <= options.gate;
+          });
+      if (hit) ++matched;
+    }
+  }
+  return static_cast<double>(matched) / static_cast<double>(a.size());
+}
+
+double scan_sso(const PreparedScan& a, const PoseGaussian& pose_a,
+                const PreparedScan& b, const PoseGaussian& pose_b,
+                const SsoOptions& options) {
+  return 0.5 * (scan_match_ratio(a, pose_a, b, pose_b, options) +
+                scan_match_ratio(b, pose_b, a, pose_a, options));
+}
+
+double scan_sso(const LaserScan& a, const Pose2D& pose_a, const LaserScan& b,
+                const Pose2D& pose_b, const SsoOptions& options) {
+  return scan_sso(PreparedScan(a, options), PoseGaussian(pose_a),
+                  PreparedScan(b, options), PoseGaussian(pose_b), options);
+}
+
+}  // namespace hmt::area
