@@ -7,14 +7,14 @@
 namespace hmt::grid {
 namespace {
 
-int16_t scaled_logit(double p) {
-  return static_cast<int16_t>(std::lround(std::log(p / (1.0 - p)) * kLogOddsScale));
+LogOdds scaled_logit(double p) {
+  return static_cast<LogOdds>(std::lround(std::log(p / (1.0 - p)) * kLogOddsScale));
 }
 
 // Walks the cells of a Bresenham line, fetching each tile once per visit.
 class RayWriter {
  public:
-  RayWriter(OccupancyGrid& g, int16_t l_free, int16_t l_clamp)
+  RayWriter(OccupancyGrid& g, LogOdds l_free, LogOdds l_clamp)
       : grid_(g), l_free_(l_free), l_clamp_(l_clamp) {}
 
   Cell& cell(int x, int y) {
@@ -35,7 +35,7 @@ class RayWriter {
     int err = dx + dy;
     while (x != b.x || y != b.y) {
       Cell& c = cell(x, y);
-      c.logodds = static_cast<int16_t>(std::max<int>(c.logodds + l_free_, -l_clamp_));
+      c.logodds = static_cast<LogOdds>(std::max<int>(c.logodds + l_free_, -l_clamp_));
       const int e2 = 2 * err;
       if (e2 >= dy) { err += dy; x += sx; }
       if (e2 <= dx) { err += dx; y += sy; }
@@ -44,7 +44,7 @@ class RayWriter {
 
  private:
   OccupancyGrid& grid_;
-  int16_t l_free_, l_clamp_;
+  LogOdds l_free_, l_clamp_;
   Tile* tile_ = nullptr;
   int tx_ = 0, ty_ = 0;
 };
@@ -58,17 +58,17 @@ void InsertionOptions::load(Config& cfg, const std::string& s) {
   max_range = cfg.get_double(s, "max_insertion_range", max_range);
   require(p_occupied > 0.5 && p_occupied < 1.0, s, "p_occupied", "in (0.5, 1)");
   require(p_free > 0.0 && p_free < 0.5, s, "p_free", "in (0, 0.5)");
-  require(p_clamp > p_occupied && p_clamp < 1.0, s, "p_clamp",
-          "in (p_occupied, 1)");
+  require(p_clamp > p_occupied && p_clamp <= 0.998, s, "p_clamp",
+          "in (p_occupied, 0.998]");
   require(max_range > 0.0, s, "max_insertion_range", "> 0");
 }
-int16_t InsertionOptions::l_occupied() const { return scaled_logit(p_occupied); }
-int16_t InsertionOptions::l_free() const { return scaled_logit(p_free); }
-int16_t InsertionOptions::l_clamp() const { return scaled_logit(p_clamp); }
+LogOdds InsertionOptions::l_occupied() const { return scaled_logit(p_occupied); }
+LogOdds InsertionOptions::l_free() const { return scaled_logit(p_free); }
+LogOdds InsertionOptions::l_clamp() const { return scaled_logit(p_clamp); }
 
 void insert_scan(OccupancyGrid& grid, const Pose2D& robot_pose,
                  const LaserScan& scan, const InsertionOptions& opt) {
-  const int16_t l_occ = opt.l_occupied(), l_clamp = opt.l_clamp();
+  const LogOdds l_occ = opt.l_occupied(), l_clamp = opt.l_clamp();
   RayWriter ray(grid, opt.l_free(), l_clamp);
   const Pose2D sensor = robot_pose + scan.sensor_pose;
   const CellIndex origin = grid.cell_of(sensor.x, sensor.y);
@@ -84,7 +84,7 @@ void insert_scan(OccupancyGrid& grid, const Pose2D& robot_pose,
     ray.free_line(origin, end);
     if (!hit) continue;
     Cell& c = ray.cell(end.x, end.y);
-    c.logodds = static_cast<int16_t>(std::min<int>(c.logodds + l_occ, l_clamp));
+    c.logodds = static_cast<LogOdds>(std::min<int>(c.logodds + l_occ, l_clamp));
     // Running mean of the hit position inside the cell (weight capped so the
     // mean still follows small changes).
     const Point2D ctr = grid.cell_center(end);

@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <thread>
 #include <unordered_set>
@@ -65,64 +66,85 @@ void GridRbpf::maybe_insert(Particle& p, const LaserScan& scan) {
   p.inserted = true;
 }
 
+GridRbpf::Lattice GridRbpf::evaluate_lattice(const grid::OccupancyGrid& map,
+                                             const Pose2D& from, const Pose2D& u,
+                                             const ScanPoints& pts,
+                                             const Pose2D& center) const {
+  // Target p(z|x,m) p(x|x',u) on a 3x3x3 lattice around `center`. Two
+  // temperings of the same evaluations: a mild one shapes the proposal (a
+  // pose must follow the scan closely), a strong one weights the particles
+  // (neighbouring beams are correlated; the plain product would make every
+  // resampling keep a single survivor).
+  const MotionSigmas sg = motion_.sigmas(u);
+  const double log_norm_motion =
+      -1.5 * std::log(2 * M_PI) - 2 * std::log(sg.xy) - std::log(sg.theta);
+  const double dl = opt_.sample_linear, da = opt_.sample_angular;
+  std::array<double, 27> logq, logw;
+  std::array<Eigen::Vector3d, 27> offs;
+  size_t j = 0;
+  for (int a = -1; a <= 1; ++a)
+    for (int y = -1; y <= 1; ++y)
+      for (int x = -1; x <= 1; ++x, ++j) {
+        const Pose2D xj(center.x + x * dl, center.y + y * dl,
+                        wrap_angle(center.theta + a * da));
+        const double ll = matcher_.score(map, xj, pts).log_likelihood;
+        const double lm = log_norm_motion + motion_.log_density(from, u, xj);
+        logq[j] = ll / opt_.proposal_gain + lm;
+        logw[j] = ll / opt_.likelihood_gain + lm;
+        offs[j] = Eigen::Vector3d(x * dl, y * dl, a * da);
+      }
+  Lattice out;
+  const double log_q = log_sum_exp({logq.begin(), logq.end()});
+  // eta = sum_j tau_j * (lattice cell volume)
+  out.log_eta = log_sum_exp({logw.begin(), logw.end()}) + std::log(dl * dl * da);
+  out.ok = std::isfinite(log_q) && std::isfinite(out.log_eta);
+  if (!out.ok) return out;
+  out.mean.setZero();
+  out.cov.setZero();
+  for (j = 0; j < 27; ++j) out.mean += std::exp(logq[j] - log_q) * offs[j];
+  for (j = 0; j < 27; ++j) {
+    const Eigen::Vector3d d = offs[j] - out.mean;
+    out.cov += std::exp(logq[j] - log_q) * d * d.transpose();
+  }
+  // The lattice cannot resolve spreads much below its spacing; keep the
+  // Gaussian at least that wide so sampling stays well-posed.
+  out.cov.diagonal() += Eigen::Vector3d(1e-3 * dl * dl, 1e-3 * dl * dl, 1e-3 * da * da);
+  return out;
+}
+
 void GridRbpf::move_particle(size_t i, const LogStep& step, const ScanPoints& pts,
                              uint64_t stream_seed, bool* fallback) {
   Particle& p = particles_[i];
   Random rng(stream_seed);
   const Pose2D& u = step.odometry_increment;
-  const Pose2D prior = p.pose + u;
-  const double gain = opt_.likelihood_gain;
   const size_t n = pts.hit.size();
   *fallback = true;
 
   if (opt_.proposal == ProposalKind::kOptimal && n > 0) {
     MatchScore ms;
-    const Pose2D mode = matcher_.optimize(p.map, prior, pts, &ms);
+    const Pose2D mode = matcher_.optimize(p.map, p.pose + u, pts, &ms);
     if (ms.matched >= opt_.matcher.min_match_ratio * static_cast<double>(n)) {
-      // Target p(z|x,m) p(x|x',u) on a 3x3x3 lattice around the mode.
-      const MotionSigmas sg = motion_.sigmas(u);
-      const double log_norm_motion =
-          -1.5 * std::log(2 * M_PI) - 2 * std::log(sg.xy) - std::log(sg.theta);
-      const double dl = opt_.sample_linear, da = opt_.sample_angular;
-      std::vector<double> logt;
-      std::vector<Eigen::Vector3d> offs;
-      logt.reserve(27);
-      offs.reserve(27);
-      for (int a = -1; a <= 1; ++a)
-        for (int y = -1; y <= 1; ++y)
-          for (int x = -1; x <= 1; ++x) {
-            const Pose2D xj(mode.x + x * dl, mode.y + y * dl,
-                            wrap_angle(mode.theta + a * da));
-            const double ll = matcher_.score(p.map, xj, pts).log_likelihood;
-            logt.push_back(ll / gain + log_norm_motion +
-                           motion_.log_density(p.pose, u, xj));
-            offs.emplace_back(x * dl, y * dl, a * da);
-          }
-      const double log_eta = log_sum_exp(logt);
-      if (std::isfinite(log_eta)) {
-        Eigen::Vector3d mu = Eigen::Vector3d::Zero();
-        Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-        for (size_t j = 0; j < logt.size(); ++j) mu += std::exp(logt[j] - log_eta) * offs[j];
-        for (size_t j = 0; j < logt.size(); ++j) {
-          const Eigen::Vector3d d = offs[j] - mu;
-          cov += std::exp(logt[j] - log_eta) * d * d.transpose();
-        }
-        // The lattice cannot resolve spreads much below its spacing; keep
-        // the Gaussian at least that wide so sampling stays well-posed.
-        cov.diagonal() += Eigen::Vector3d(1e-3 * dl * dl, 1e-3 * dl * dl, 1e-3 * da * da);
-        const Eigen::Matrix3d L = cov.llt().matrixL();
+      const Lattice lat = evaluate_lattice(p.map, p.pose, u, pts, mode);
+      if (lat.ok) {
+        const Eigen::Matrix3d L = lat.cov.llt().matrixL();
         const Eigen::Vector3d z(rng.normal(), rng.normal(), rng.normal());
-        const Eigen::Vector3d d = mu + L * z;
+        const Eigen::Vector3d d = lat.mean + L * z;
         p.pose = Pose2D(mode.x + d.x(), mode.y + d.y(), wrap_angle(mode.theta + d.z()));
-        // eta = sum_j tau_j * (lattice cell volume)
-        p.log_weight += log_eta + std::log(dl * dl * da);
+        p.log_weight += lat.log_eta;
         *fallback = false;
       }
     }
   }
   if (*fallback) {
-    p.pose = motion_.sample(p.pose, u, rng);
-    if (n > 0) p.log_weight += matcher_.score(p.map, p.pose, pts).log_likelihood / gain;
+    // Odometry proposal. The weight is the same lattice estimate of the
+    // normaliser, taken around the sampled pose, so that particles on either
+    // proposal stay comparable.
+    const Pose2D from = p.pose;
+    p.pose = motion_.sample(from, u, rng);
+    if (n > 0) {
+      const Lattice lat = evaluate_lattice(p.map, from, u, pts, p.pose);
+      if (lat.ok) p.log_weight += lat.log_eta;
+    }
   }
   p.path.push_back(p.pose);
   maybe_insert(p, step.scan);

@@ -12,6 +12,7 @@ void RbpfOptions::load(Config& cfg) {
   map_update_distance = cfg.get_double(s, "map_update_distance", map_update_distance);
   map_update_angle = cfg.get_double(s, "map_update_angle", map_update_angle);
   likelihood_gain = cfg.get_double(s, "likelihood_gain", likelihood_gain);
+  proposal_gain = cfg.get_double(s, "proposal_gain", proposal_gain);
   sample_linear = cfg.get_double(s, "sample_linear", sample_linear);
   sample_angular = cfg.get_double(s, "sample_angular", sample_angular);
   require(particles >= 1 && particles <= 100000, s, "particles", "in [1, 100000]");
@@ -26,6 +27,7 @@ void RbpfOptions::load(Config& cfg) {
   require(map_update_distance >= 0, s, "map_update_distance", ">= 0");
   require(map_update_angle >= 0, s, "map_update_angle", ">= 0");
   require(likelihood_gain >= 1, s, "likelihood_gain", ">= 1");
+  require(proposal_gain >= 1, s, "proposal_gain", ">= 1");
   require(sample_linear > 0, s, "sample_linear", "> 0");
   require(sample_angular > 0, s, "sample_angular", "> 0");
 

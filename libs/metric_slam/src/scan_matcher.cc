@@ -1,5 +1,6 @@
 #include "hmt/metric_slam/scan_matcher.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -15,6 +16,8 @@ void MatcherOptions::load(Config& cfg, const std::string& s) {
   angular_step = cfg.get_double(s, "angular_step", angular_step);
   refinements = cfg.get_int(s, "refinements", refinements);
   min_match_ratio = cfg.get_double(s, "min_match_ratio", min_match_ratio);
+  coarse_beams = cfg.get_int(s, "coarse_beams", coarse_beams);
+  gauss_newton_iterations = cfg.get_int(s, "gauss_newton_iterations", gauss_newton_iterations);
   require(max_range > 0, s, "max_range", "> 0");
   require(beam_skip >= 0, s, "beam_skip", ">= 0");
   require(window >= 0 && window <= 5, s, "window", "in [0, 5]");
@@ -24,77 +27,98 @@ void MatcherOptions::load(Config& cfg, const std::string& s) {
   require(linear_step > 0, s, "linear_step", "> 0");
   require(angular_step > 0, s, "angular_step", "> 0");
   require(refinements >= 0 && refinements <= 20, s, "refinements", "in [0, 20]");
+  require(coarse_beams >= 0, s, "coarse_beams", ">= 0 (0: all beams)");
+  require(gauss_newton_iterations >= 0 && gauss_newton_iterations <= 50, s,
+          "gauss_newton_iterations", "in [0, 50]");
   require(min_match_ratio >= 0 && min_match_ratio <= 1, s, "min_match_ratio",
           "in [0, 1]");
 }
 
 ScanMatcher::ScanMatcher(const MatcherOptions& opt) : opt_(opt) {
   const double p = opt.occupied_probability;
-  occ_threshold_ = static_cast<int16_t>(
+  occ_threshold_ = static_cast<grid::LogOdds>(
       std::lround(std::log(p / (1 - p)) * grid::kLogOddsScale));
   inv_2sigma2_ = 1.0 / (2.0 * opt.sigma * opt.sigma);
 }
 
-MatchScore ScanMatcher::score(const grid::OccupancyGrid& map, const Pose2D& pose,
-                              const ScanPoints& scan) const {
-  MatchScore out;
+template <class F>
+void ScanMatcher::for_each_match(const grid::OccupancyGrid& map, const Pose2D& pose,
+                                 const ScanPoints& scan, int w, F&& f) const {
   const double c = std::cos(pose.theta), s = std::sin(pose.theta);
-  const int w = opt_.window;
-  const double res = map.resolution();
-  const double max_d2 = (w + 0.5) * (w + 0.5) * res * res;
   const size_t n = scan.hit.size();
-  double ll = 0.0;
   for (size_t i = 0; i < n; ++i) {
     const Point2D& p = scan.hit[i];
-    const Point2D& f = scan.free[i];
+    const Point2D& q = scan.free[i];
     const double hx = pose.x + c * p.x - s * p.y, hy = pose.y + s * p.x + c * p.y;
-    const double fx = pose.x + c * f.x - s * f.y, fy = pose.y + s * f.x + c * f.y;
+    const double fx = pose.x + c * q.x - s * q.y, fy = pose.y + s * q.x + c * q.y;
     const grid::CellIndex hc = map.cell_of(hx, hy), fc = map.cell_of(fx, fy);
-    double best = max_d2;
-    bool found = false;
+    double best = std::numeric_limits<double>::infinity();
+    Point2D best_mean;
     for (int dy = -w; dy <= w; ++dy)
       for (int dx = -w; dx <= w; ++dx) {
-        const grid::CellIndex q{hc.x + dx, hc.y + dy};
-        const grid::Cell* cell = map.find(q);
+        const grid::CellIndex cq{hc.x + dx, hc.y + dy};
+        const grid::Cell* cell = map.find(cq);
         if (!cell || cell->logodds < occ_threshold_) continue;
         const grid::Cell* fcell = map.find({fc.x + dx, fc.y + dy});
         if (fcell && fcell->logodds >= occ_threshold_) continue;
-        const Point2D m = map.hit_mean(q, *cell);
+        const Point2D m = map.hit_mean(cq, *cell);
         const double d2 = (hx - m.x) * (hx - m.x) + (hy - m.y) * (hy - m.y);
         if (d2 < best) {
           best = d2;
-          found = true;
+          best_mean = m;
         }
       }
-    out.matched += found;
-    ll -= best * inv_2sigma2_;
+    if (best < std::numeric_limits<double>::infinity()) f(i, hx, hy, best, best_mean);
   }
-  out.log_likelihood = ll;
+}
+
+MatchScore ScanMatcher::score(const grid::OccupancyGrid& map, const Pose2D& pose,
+                              const ScanPoints& scan) const {
+  return score(map, pose, scan, opt_.window);
+}
+
+MatchScore ScanMatcher::score(const grid::OccupancyGrid& map, const Pose2D& pose,
+                              const ScanPoints& scan, int w) const {
+  // The field is truncated at the window's reach: a beam with no obstacle
+  // in the window costs as much as one at the window's edge.
+  const double res = map.resolution();
+  const double max_d2 = (w + 0.5) * (w + 0.5) * res * res;
+  double sum_d2 = 0.0;
+  int matched = 0;
+  for_each_match(map, pose, scan, w,
+                 [&](size_t, double, double, double d2, const Point2D&) {
+                   sum_d2 += std::min(d2, max_d2);
+                   ++matched;
+                 });
+  MatchScore out;
+  out.matched = matched;
+  out.log_likelihood =
+      -(sum_d2 + (static_cast<double>(scan.hit.size()) - matched) * max_d2) * inv_2sigma2_;
   return out;
 }
 
-Pose2D ScanMatcher::optimize(const grid::OccupancyGrid& map, const Pose2D& start,
-                             const ScanPoints& scan, MatchScore* best_out) const {
+Pose2D ScanMatcher::hill_climb(const grid::OccupancyGrid& map, const Pose2D& start,
+                               const ScanPoints& scan, int window) const {
   Pose2D best = start;
-  MatchScore best_score = score(map, best, scan);
+  double best_ll = score(map, best, scan, window).log_likelihood;
   double ls = opt_.linear_step, as = opt_.angular_step;
   int refinement = 0;
-  // Bounded: each improvement strictly raises the score, and the number of
-  // moves per refinement level is capped as a guard against plateaus.
+  // Each move strictly raises the score; the cap guards against long walks
+  // along a plateau.
   int moves = 0;
-  while (refinement < opt_.refinements && moves < 200) {
+  while (refinement < opt_.refinements && moves < 100) {
     const Pose2D cand[6] = {
         {best.x + ls, best.y, best.theta}, {best.x - ls, best.y, best.theta},
         {best.x, best.y + ls, best.theta}, {best.x, best.y - ls, best.theta},
         {best.x, best.y, wrap_angle(best.theta + as)},
         {best.x, best.y, wrap_angle(best.theta - as)}};
     int arg = -1;
-    MatchScore arg_score = best_score;
+    double arg_ll = best_ll;
     for (int k = 0; k < 6; ++k) {
-      const MatchScore sc = score(map, cand[k], scan);
-      if (sc.log_likelihood > arg_score.log_likelihood) {
+      const double ll = score(map, cand[k], scan, window).log_likelihood;
+      if (ll > arg_ll) {
         arg = k;
-        arg_score = sc;
+        arg_ll = ll;
       }
     }
     if (arg < 0) {
@@ -103,9 +127,73 @@ Pose2D ScanMatcher::optimize(const grid::OccupancyGrid& map, const Pose2D& start
       ++refinement;
     } else {
       best = cand[arg];
-      best_score = arg_score;
+      best_ll = arg_ll;
       ++moves;
     }
+  }
+  return best;
+}
+
+bool ScanMatcher::gauss_newton_step(const grid::OccupancyGrid& map,
+                                    const ScanPoints& scan, Pose2D* pose) const {
+  // Point-to-point residuals r_i = T(pose) p_i - m_i against each beam's
+  // nearest hit mean; J_i = [I | dR/dtheta p_i].
+  double H[6] = {0, 0, 0, 0, 0, 0};  // upper triangle of the 3x3 J^T J
+  double g[3] = {0, 0, 0};
+  int n = 0;
+  const double c = std::cos(pose->theta), s = std::sin(pose->theta);
+  for_each_match(map, *pose, scan, opt_.window,
+                 [&](size_t i, double hx, double hy, double, const Point2D& m) {
+                   const Point2D& p = scan.hit[i];
+                   const double jx = -s * p.x - c * p.y, jy = c * p.x - s * p.y;
+                   const double rx = hx - m.x, ry = hy - m.y;
+                   H[0] += 1; H[1] += 0; H[2] += jx;
+                   H[3] += 1; H[4] += jy;
+                   H[5] += jx * jx + jy * jy;
+                   g[0] += rx; g[1] += ry; g[2] += jx * rx + jy * ry;
+                   ++n;
+                 });
+  if (n < 6) return false;
+  // Solve H d = -g by Cholesky of the 3x3 symmetric matrix.
+  const double a = H[0], b = H[1], d = H[2], e = H[3], f = H[4], k = H[5];
+  const double l00 = std::sqrt(a);
+  const double l10 = b / l00, l20 = d / l00;
+  const double t11 = e - l10 * l10;
+  if (t11 <= 0) return false;
+  const double l11 = std::sqrt(t11);
+  const double l21 = (f - l20 * l10) / l11;
+  const double t22 = k - l20 * l20 - l21 * l21;
+  if (t22 <= 1e-9 * k) return false;
+  const double l22 = std::sqrt(t22);
+  const double y0 = -g[0] / l00, y1 = (-g[1] - l10 * y0) / l11,
+               y2 = (-g[2] - l20 * y0 - l21 * y1) / l22;
+  const double x2 = y2 / l22, x1 = (y1 - l21 * x2) / l11,
+               x0 = (y0 - l10 * x1 - l20 * x2) / l00;
+  *pose = Pose2D(pose->x + x0, pose->y + x1, wrap_angle(pose->theta + x2));
+  return true;
+}
+
+Pose2D ScanMatcher::optimize(const grid::OccupancyGrid& map, const Pose2D& start,
+                             const ScanPoints& scan, MatchScore* best_out) const {
+  // Coarse: an evenly spread subset of the beams.
+  ScanPoints coarse;
+  const size_t n = scan.hit.size();
+  const size_t stride =
+      opt_.coarse_beams > 0 ? std::max<size_t>(1, n / static_cast<size_t>(opt_.coarse_beams)) : 1;
+  for (size_t i = 0; i < n; i += stride) {
+    coarse.hit.push_back(scan.hit[i]);
+    coarse.free.push_back(scan.free[i]);
+  }
+  Pose2D best = hill_climb(map, start, coarse, opt_.window);
+  MatchScore best_score = score(map, best, scan);
+  // Fine: Gauss-Newton on all beams, kept only while the likelihood rises.
+  for (int it = 0; it < opt_.gauss_newton_iterations; ++it) {
+    Pose2D cand = best;
+    if (!gauss_newton_step(map, scan, &cand)) break;
+    const MatchScore sc = score(map, cand, scan);
+    if (sc.log_likelihood <= best_score.log_likelihood) break;
+    best = cand;
+    best_score = sc;
   }
   if (best_out) *best_out = best_score;
   return best;

@@ -34,6 +34,21 @@ inline std::vector<Segment> office_world() {
   return w;
 }
 
+// A long corridor with niches every few metres: each scan sees only a short
+// stretch of it, as in a large building.
+inline std::vector<Segment> corridor_world(double length = 60.0) {
+  std::vector<Segment> w = {{0, 0, length, 0}, {0, 3, length, 3}, {0, 0, 0, 3},
+                            {length, 0, length, 3}};
+  for (int k = 0; 5.0 * k + 3.5 < length; ++k) {
+    const double x = 2.0 + 5.0 * k + 0.7 * (k % 3);
+    const double y = (k % 2) ? 3.0 : 0.0, d = (k % 2) ? -0.4 : 0.4;
+    w.push_back({x, y, x, y + d});
+    w.push_back({x, y + d, x + 0.6, y + d});
+    w.push_back({x + 0.6, y + d, x + 0.6, y});
+  }
+  return w;
+}
+
 inline LaserScan cast_scan(const std::vector<Segment>& world, const Pose2D& pose,
                            int beams, double fov, double max_range, Random* noise,
                            double sigma) {
@@ -71,8 +86,9 @@ struct SimRun {
 // Drives through the way-points at `step` metres per scan, with odometry
 // noise proportional to the motion.
 inline SimRun simulate(const std::vector<Pose2D>& waypoints, double step,
-                       uint64_t seed, double odo_noise = 0.05) {
-  const auto world = office_world();
+                       uint64_t seed, double odo_noise = 0.05,
+                       const std::vector<Segment>& world = office_world(),
+                       double max_range = 30.0) {
   Random rng(seed);
   SimRun run;
   Pose2D pose = waypoints.front();
@@ -80,7 +96,7 @@ inline SimRun simulate(const std::vector<Pose2D>& waypoints, double step,
   auto emit = [&](bool first) {
     LogStep st;
     st.timestamp = static_cast<double>(run.truth.size());
-    st.scan = cast_scan(world, pose, 181, M_PI, 30.0, &rng, 0.01);
+    st.scan = cast_scan(world, pose, 181, M_PI, max_range, &rng, 0.01);
     st.scan.timestamp = st.timestamp;
     if (!first) {
       const Pose2D u = pose - prev;

@@ -7,9 +7,9 @@
 // With N particles the memory is one map plus the recently changed tiles, not
 // N full maps, and resampling costs a pointer copy per tile.
 //
-// Each cell keeps a clamped log-odds of occupancy and the running mean of the
-// laser hits that fell in it (sub-cell precision for scan matching, as in
-// GMapping's point accumulators).
+// Each cell (4 bytes) keeps a clamped log-odds of occupancy and the running
+// mean of the laser hits that fell in it (sub-cell precision for scan
+// matching, as in GMapping's point accumulators).
 //
 // Thread safety: distinct OccupancyGrid objects may be read and written from
 // different threads even when they share tiles (the copy-on-write test is
@@ -31,13 +31,17 @@ constexpr int kTileBits = 5;
 constexpr int kTileSize = 1 << kTileBits;  // cells per tile side
 constexpr int kTileMask = kTileSize - 1;
 
+// Log-odds in steps of 1/kLogOddsScale; one byte keeps a cell at 4 bytes,
+// and the clamp (p_clamp) keeps values far from the type's limits.
+using LogOdds = int8_t;
+
 struct Cell {
-  int16_t logodds = 0;  // log-odds of occupancy, scaled by kLogOddsScale
+  LogOdds logodds = 0;  // log-odds of occupancy, scaled by kLogOddsScale
   uint8_t hits = 0;     // laser hits seen here (saturating), for the mean
   int8_t hx = 0;        // mean hit offset from the cell centre, in
   int8_t hy = 0;        //   units of resolution / kHitScale
 };
-constexpr double kLogOddsScale = 100.0;
+constexpr double kLogOddsScale = 20.0;
 constexpr double kHitScale = 254.0;
 
 struct Tile {
@@ -69,7 +73,7 @@ class OccupancyGrid {
     return t ? &t->cells[((c.y & kTileMask) << kTileBits) | (c.x & kTileMask)]
              : nullptr;
   }
-  int16_t logodds(CellIndex c) const {
+  LogOdds logodds(CellIndex c) const {
     const Cell* cell = find(c);
     return cell ? cell->logodds : 0;
   }

@@ -19,9 +19,9 @@ struct InsertionOptions {
 
   void load(Config& cfg, const std::string& section = "grid");
   // Scaled integer log-odds increments.
-  int16_t l_occupied() const;
-  int16_t l_free() const;
-  int16_t l_clamp() const;
+  LogOdds l_occupied() const;
+  LogOdds l_free() const;
+  LogOdds l_clamp() const;
 };
 
 // Inserts `scan` taken with the robot at `robot_pose` (map frame).

@@ -14,6 +14,7 @@
 // resampling and memory cost scale with what changed, not with map size.
 #pragma once
 
+#include <Eigen/Core>
 #include <memory>
 #include <vector>
 
@@ -71,6 +72,17 @@ class GridRbpf {
   size_t map_memory_bytes() const;
 
  private:
+  struct Lattice {
+    bool ok = false;
+    double log_eta = 0.0;      // log of the normaliser estimate
+    Eigen::Vector3d mean;      // proposal Gaussian, relative to the centre
+    Eigen::Matrix3d cov;
+  };
+  // The optimal-proposal target around `center` for a particle moving from
+  // `from` by odometry `u` in `map`.
+  Lattice evaluate_lattice(const grid::OccupancyGrid& map, const Pose2D& from,
+                           const Pose2D& u, const ScanPoints& pts,
+                           const Pose2D& center) const;
   void initialise(const LogStep& step);
   void move_particle(size_t i, const LogStep& step, const ScanPoints& pts,
                      uint64_t stream_seed, bool* fallback);

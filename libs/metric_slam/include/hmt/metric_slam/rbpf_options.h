@@ -26,7 +26,9 @@ struct RbpfOptions {
   double map_update_angle = 0.0;
   // Log-likelihoods are divided by this before weighting: beams are not
   // independent, and an untempered product makes the weights collapse.
-  double likelihood_gain = 3.0;
+  double likelihood_gain = 30.0;
+  // The same for the likelihood that shapes the proposal Gaussian.
+  double proposal_gain = 1.0;
   // Half-widths of the 3x3x3 lattice around the scan-match mode on which the
   // optimal proposal is evaluated (paper 002 Eq. 6, second step).
   double sample_linear = 0.02;

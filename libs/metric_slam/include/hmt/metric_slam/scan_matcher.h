@@ -24,7 +24,12 @@ struct MatcherOptions {
   double occupied_probability = 0.6;  // a cell above this is an obstacle
   double linear_step = 0.05;        // initial hill-climbing steps
   double angular_step = 0.05;
-  int refinements = 5;              // step halvings
+  int refinements = 3;              // step halvings
+  // The hill climbing runs on at most this many evenly spread beams, with a
+  // same window; the
+  // result is then refined by Gauss-Newton on every beam.
+  int coarse_beams = 60;
+  int gauss_newton_iterations = 3;
   double min_match_ratio = 0.2;     // below: matching failed, use odometry
 
   void load(Config& cfg, const std::string& section = "scan_matcher");
@@ -43,15 +48,29 @@ class ScanMatcher {
                    const ScanPoints& scan) const;
 
   // Hill climbing from `start` (GMapping-style: try +-x, +-y, +-theta, take
-  // the best, halve the steps when nothing improves).
+  // the best, halve the steps when nothing improves) on a subset of beams,
+  // then Gauss-Newton on all beams against the matched cells' hit means.
   Pose2D optimize(const grid::OccupancyGrid& map, const Pose2D& start,
                   const ScanPoints& scan, MatchScore* best) const;
 
   const MatcherOptions& options() const { return opt_; }
 
  private:
+  MatchScore score(const grid::OccupancyGrid& map, const Pose2D& pose,
+                   const ScanPoints& scan, int window) const;
+  Pose2D hill_climb(const grid::OccupancyGrid& map, const Pose2D& start,
+                    const ScanPoints& scan, int window) const;
+  // One Gauss-Newton step; false if too few matches to constrain the pose.
+  bool gauss_newton_step(const grid::OccupancyGrid& map, const ScanPoints& scan,
+                         Pose2D* pose) const;
+  // Calls f(i, hx, hy, mean) for every beam i whose end point (hx, hy) at
+  // `pose` has an obstacle in the window; `mean` is the nearest hit mean.
+  template <class F>
+  void for_each_match(const grid::OccupancyGrid& map, const Pose2D& pose,
+                      const ScanPoints& scan, int window, F&& f) const;
+
   MatcherOptions opt_;
-  int16_t occ_threshold_;
+  grid::LogOdds occ_threshold_;
   double inv_2sigma2_;
 };
 
