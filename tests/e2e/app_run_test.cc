@@ -1,0 +1,106 @@
+// hmt-slam run on the embedded logs: scan counts, outputs, the final pose
+// against an independent reference, and determinism.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "hmt/common/pose2d.h"
+#include "hmt/io/tum.h"
+#include "run_app.h"
+
+namespace hmt::e2e {
+namespace {
+namespace fs = std::filesystem;
+
+Pose2D reference_final_pose() {
+  std::ifstream f(std::string(HMT_SOURCE_DIR) + "/tests/reference/malaga_final_pose.txt");
+  std::string line;
+  while (std::getline(f, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream is(line);
+    Pose2D p;
+    is >> p.x >> p.y >> p.theta;
+    return p;
+  }
+  ADD_FAILURE() << "no reference pose";
+  return {};
+}
+
+TEST(AppRun, MalagaOneLoopMatchesIndependentReference) {
+  const std::string dir = temp_dir("malaga");
+  const AppResult r = run_app("run --config config/default.ini --quiet --out '" + dir + "/out'", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("map image: "), std::string::npos) << r.out;
+
+  const auto summary = nlohmann::json::parse(slurp(dir + "/out/summary.json"));
+  // 225 sensory frames, each with one scan (the first has no action before it).
+  EXPECT_EQ(summary["scans"].get<int>(), 225);
+  const auto traj = io::read_tum(dir + "/out/trajectory.tum");
+  ASSERT_EQ(traj.size(), 225u);
+  for (const char* f : {"map.png", "map.pgm", "map.yaml", "config_effective.ini"})
+    EXPECT_TRUE(fs::exists(dir + "/out/" + f)) << f;
+
+  const Pose2D ref = reference_final_pose();
+  const Pose2D got = traj.back().pose;
+  EXPECT_LT(std::hypot(got.x - ref.x, got.y - ref.y), 0.3)
+      << "final pose " << got.x << " " << got.y << " " << got.theta;
+  EXPECT_LT(std::fabs(wrap_angle(got.theta - ref.theta)), 0.03);
+  EXPECT_NEAR(summary["final_pose"]["x"].get<double>(), got.x, 1e-5);
+}
+
+TEST(AppRun, SameSeedSameBytesWhateverTheThreads) {
+  const std::string dir = temp_dir("determinism");
+  const std::string base = "run --config config/default.ini --quiet --set input.max_steps=80 ";
+  const AppResult a = run_app(base + "--set metric_slam.threads=1 --out '" + dir + "/a'", dir);
+  const AppResult b = run_app(base + "--set metric_slam.threads=2 --out '" + dir + "/b'", dir);
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  for (const char* f : {"trajectory.tum", "map.png", "map.pgm", "map.yaml"})
+    EXPECT_EQ(slurp(dir + "/a/" + f), slurp(dir + "/b/" + f)) << f;
+  // A different seed gives a different run (the check above is not vacuous).
+  const AppResult c = run_app(base + "--set metric_slam.seed=9 --out '" + dir + "/c'", dir);
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_NE(slurp(dir + "/a/trajectory.tum"), slurp(dir + "/c/trajectory.tum"));
+}
+
+TEST(AppRun, CarmenLogAndItsRawlogConversion) {
+  const std::string dir = temp_dir("carmen");
+  const AppResult r = run_app("run --config config/edmonton.ini --quiet --set input.max_steps=60 --out '" +
+                                  dir + "/carmen'", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto traj = io::read_tum(dir + "/carmen/trajectory.tum");
+  ASSERT_EQ(traj.size(), 60u);
+
+  for (const char* format : {"sf", "obs"}) {
+    SCOPED_TRACE(format);
+    const std::string raw = dir + "/edmonton_" + format + ".rawlog";
+    const AppResult c = run_app("convert --input datasets/edmonton.log.gz --output '" + raw +
+                                    "' --format " + format, dir);
+    ASSERT_EQ(c.exit_code, 0) << c.err;
+    EXPECT_NE(c.out.find("340 scans"), std::string::npos) << c.out;
+    const std::string out = dir + "/raw_" + format;
+    const AppResult s = run_app("run --config config/default.ini --quiet --input '" + raw +
+                                    "' --set input.max_steps=60 --out '" + out + "'", dir);
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    const auto t2 = io::read_tum(out + "/trajectory.tum");
+    ASSERT_EQ(t2.size(), 60u);
+    // Timestamps survive the conversion.
+    for (size_t i = 0; i < t2.size(); ++i) EXPECT_NEAR(t2[i].timestamp, traj[i].timestamp, 1e-5);
+  }
+}
+
+TEST(AppRun, EffectiveConfigRecordsOverrides) {
+  const std::string dir = temp_dir("effective");
+  const AppResult r = run_app("run --config config/default.ini --quiet --set input.max_steps=5 "
+                              "--set metric_slam.particles=7 --out '" + dir + "/o'", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string eff = slurp(dir + "/o/config_effective.ini");
+  EXPECT_NE(eff.find("particles = 7"), std::string::npos) << eff;
+  EXPECT_NE(eff.find("[scan_matcher]"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hmt::e2e

@@ -1,0 +1,47 @@
+// Runs the hmt-slam executable as a user would and captures what it says.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace hmt::e2e {
+
+struct AppResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+inline std::string temp_dir(const std::string& name) {
+  const auto d = std::filesystem::temp_directory_path() /
+                 ("hmt_e2e_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d.string();
+}
+
+// `args` is appended to the binary path as is (quote paths yourself).
+inline AppResult run_app(const std::string& args, const std::string& work_dir) {
+  const std::string out = work_dir + "/stdout.txt", err = work_dir + "/stderr.txt";
+  const std::string cmd = std::string("cd '") + HMT_SOURCE_DIR + "' && '" + HMT_SLAM_BIN +
+                          "' " + args + " </dev/null >'" + out + "' 2>'" + err + "'";
+  const int status = std::system(cmd.c_str());
+  AppResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+}  // namespace hmt::e2e
