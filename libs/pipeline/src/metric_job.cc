@@ -36,6 +36,7 @@ JobOptions load_job_options(Config& cfg, const std::string& config_dir) {
   o.input.load(cfg, config_dir);
   o.output.load(cfg);
   o.rbpf.load(cfg);
+  o.area.load(cfg, "area");
   cfg.check_all_used();
   return o;
 }

@@ -7,6 +7,7 @@
 
 #include "hmt/common/config.h"
 #include "hmt/common/sensor_data.h"
+#include "hmt/area/area_options.h"
 #include "hmt/metric_slam/rbpf_options.h"
 
 namespace hmt::pipeline {
@@ -28,6 +29,7 @@ struct JobOptions {
   InputOptions input;
   OutputOptions output;
   metric_slam::RbpfOptions rbpf;
+  area::AreaOptions area;
 };
 
 // Reads every option of every component from `cfg`, then fails on any key
