@@ -131,6 +131,7 @@ void GridRbpf::move_particle(size_t i, const LogStep& step, const ScanPoints& pt
         const Eigen::Vector3d d = lat.mean + L * z;
         p.pose = Pose2D(mode.x + d.x(), mode.y + d.y(), wrap_angle(mode.theta + d.z()));
         p.log_weight += lat.log_eta;
+        p.path_log_weight += lat.log_eta;
         *fallback = false;
       }
     }
@@ -143,7 +144,10 @@ void GridRbpf::move_particle(size_t i, const LogStep& step, const ScanPoints& pt
     p.pose = motion_.sample(from, u, rng);
     if (n > 0) {
       const Lattice lat = evaluate_lattice(p.map, from, u, pts, p.pose);
-      if (lat.ok) p.log_weight += lat.log_eta;
+      if (lat.ok) {
+        p.log_weight += lat.log_eta;
+        p.path_log_weight += lat.log_eta;
+      }
     }
   }
   p.path.push_back(p.pose);
@@ -189,7 +193,7 @@ double GridRbpf::ess() const {
 size_t GridRbpf::best_index() const {
   size_t best = 0;
   for (size_t i = 1; i < particles_.size(); ++i)
-    if (particles_[i].log_weight > particles_[best].log_weight) best = i;
+    if (particles_[i].path_log_weight > particles_[best].path_log_weight) best = i;
   return best;
 }
 
@@ -198,12 +202,18 @@ void GridRbpf::resample_if_needed() {
   double s2 = 0.0;
   for (double x : w) s2 += x * x;
   const double n = static_cast<double>(w.size());
-  if (1.0 / s2 >= opt_.resample_threshold * n) {
-    // Keep log weights near zero so they never overflow on long runs.
-    const double top = particles_[best_index()].log_weight;
-    for (auto& p : particles_) p.log_weight -= top;
-    return;
+  // Keep the log weights near zero so they never lose precision on long runs
+  // (a common shift changes neither the normalised weights nor the order).
+  double top_w = particles_[0].log_weight, top_path = particles_[0].path_log_weight;
+  for (const auto& p : particles_) {
+    top_w = std::max(top_w, p.log_weight);
+    top_path = std::max(top_path, p.path_log_weight);
   }
+  for (auto& p : particles_) {
+    p.log_weight -= top_w;
+    p.path_log_weight -= top_path;
+  }
+  if (1.0 / s2 >= opt_.resample_threshold * n) return;
   // Systematic (low-variance) resampling.
   std::vector<Particle> next;
   next.reserve(particles_.size());

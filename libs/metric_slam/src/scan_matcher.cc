@@ -17,6 +17,7 @@ void MatcherOptions::load(Config& cfg, const std::string& s) {
   refinements = cfg.get_int(s, "refinements", refinements);
   min_match_ratio = cfg.get_double(s, "min_match_ratio", min_match_ratio);
   coarse_beams = cfg.get_int(s, "coarse_beams", coarse_beams);
+  coarse_window = cfg.get_int(s, "coarse_window", coarse_window);
   gauss_newton_iterations = cfg.get_int(s, "gauss_newton_iterations", gauss_newton_iterations);
   require(max_range > 0, s, "max_range", "> 0");
   require(beam_skip >= 0, s, "beam_skip", ">= 0");
@@ -28,6 +29,7 @@ void MatcherOptions::load(Config& cfg, const std::string& s) {
   require(angular_step > 0, s, "angular_step", "> 0");
   require(refinements >= 0 && refinements <= 20, s, "refinements", "in [0, 20]");
   require(coarse_beams >= 0, s, "coarse_beams", ">= 0 (0: all beams)");
+  require(coarse_window >= 0 && coarse_window <= 5, s, "coarse_window", "in [0, 5]");
   require(gauss_newton_iterations >= 0 && gauss_newton_iterations <= 50, s,
           "gauss_newton_iterations", "in [0, 50]");
   require(min_match_ratio >= 0 && min_match_ratio <= 1, s, "min_match_ratio",
@@ -184,7 +186,7 @@ Pose2D ScanMatcher::optimize(const grid::OccupancyGrid& map, const Pose2D& start
     coarse.hit.push_back(scan.hit[i]);
     coarse.free.push_back(scan.free[i]);
   }
-  Pose2D best = hill_climb(map, start, coarse, opt_.window);
+  Pose2D best = hill_climb(map, start, coarse, opt_.coarse_window);
   MatchScore best_score = score(map, best, scan);
   // Fine: Gauss-Newton on all beams, kept only while the likelihood rises.
   for (int it = 0; it < opt_.gauss_newton_iterations; ++it) {

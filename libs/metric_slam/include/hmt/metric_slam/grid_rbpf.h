@@ -31,7 +31,12 @@ struct Particle {
   Pose2D pose;                 // current pose, in the current area's frame
   grid::OccupancyGrid map;     // the map conditioned on this path
   std::vector<Pose2D> path;    // one pose per step since the area began
-  double log_weight = 0.0;     // unnormalised
+  double log_weight = 0.0;     // unnormalised, reset by resampling
+  // Sum of the weight updates along the whole path, kept through resampling:
+  // how well the path explained all its scans. It picks the best particle
+  // (as GMapping does); the current weight alone only remembers the steps
+  // since the last resampling, which with tempered weights is too little.
+  double path_log_weight = 0.0;
   Pose2D last_insertion;       // pose of the last scan put into the map
   bool inserted = false;
 };
@@ -51,6 +56,7 @@ class GridRbpf {
   void process(const LogStep& step);
 
   const std::vector<Particle>& particles() const { return particles_; }
+  // The particle whose whole path explains the data best.
   size_t best_index() const;
   const Particle& best() const { return particles_[best_index()]; }
   // Normalised weights and their effective sample size.

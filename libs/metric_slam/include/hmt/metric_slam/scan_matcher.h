@@ -25,10 +25,11 @@ struct MatcherOptions {
   double linear_step = 0.05;        // initial hill-climbing steps
   double angular_step = 0.05;
   int refinements = 3;              // step halvings
-  // The hill climbing runs on at most this many evenly spread beams, with a
-  // same window; the
-  // result is then refined by Gauss-Newton on every beam.
+  // The hill climbing runs on at most this many evenly spread beams, with
+  // a wider search window (a wider basin for bad odometry, at the cost of
+  // fewer beams); the result is then refined by Gauss-Newton on every beam.
   int coarse_beams = 60;
+  int coarse_window = 2;            // search radius (cells) while hill climbing
   int gauss_newton_iterations = 3;
   double min_match_ratio = 0.2;     // below: matching failed, use odometry
 
