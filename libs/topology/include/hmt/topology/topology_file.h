@@ -1,0 +1,82 @@
+// Saving and loading the topological layer: an HMT map (areas with their
+// frames, keyframes and archived local maps; arcs) and the topological
+// hypotheses, in one versioned binary file that loads back exactly (every
+// double, float and cell bit for bit).
+//
+// File layout, version 1 (all integers little-endian, IEEE-754 floats
+// stored as their bit patterns, little-endian):
+//
+//   header, 40 bytes
+//     0  char[8]  magic "HMTTOPO\x1a"
+//     8  u32      format version (kTopologyFormatVersion)
+//    12  u32      flags (0)
+//    16  u64      payload size, inflated
+//    24  u64      stored size: bytes of the zlib stream that follows
+//    32  u32      CRC-32 of the inflated payload
+//    36  u32      CRC-32 of header bytes 0..35
+//   zlib stream (deflate), exactly `stored size` bytes, then end of file.
+//
+//   payload
+//     u32 area count, then per area (ascending id):
+//       u32 id; u32 frame.parent (0xffffffff = none); f64 x, y, theta of
+//       frame.origin_in_parent; u64 created_step; f64 created_time
+//       u32 keyframe count, then per keyframe: f64 x, y, theta;
+//         f64 timestamp; f32 angle_min, angle_increment, max_range;
+//         f64 sensor x, y, theta; u32 beams; f32 ranges[beams];
+//         u8 valid[beams]
+//       u8 has_map; if 1: f64 resolution; u32 tile count; then per
+//         allocated tile (ascending ty, then tx): i32 tx, ty (tile
+//         coordinates, cell >> kTileBits) and its 1024 cells as four planes
+//         in the tile's cell order: logodds[1024], hits[1024], hx[1024],
+//         hy[1024] (planes compress better than interleaved cells)
+//     u32 arc count, then per arc (ascending (from, to), from < to):
+//       u32 from, to; f64 x, y, theta; f64 cov[9] (row-major);
+//       u32 measurements
+//     u32 hypothesis count, then per hypothesis (in order):
+//       f64 log_weight; u32 path length; per entry u32 area, u64 step
+//
+// Only allocated tiles are stored, and the whole payload is deflated (free
+// and unknown space is highly repetitive). Reading checks the magic, the
+// version, both checksums and sizes, then every invariant the in-memory types
+// keep (ids ascending and unique, arcs between existing areas with positive
+// definite covariances, valid hypothesis paths); any failure is an
+// hmt::InputError naming the file and the problem. Writing goes through
+// write_file_atomically: a failed save never leaves a partial file.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hmt/topology/hmt_map.h"
+#include "hmt/topology/hypotheses.h"
+
+namespace hmt::topology {
+
+constexpr uint32_t kTopologyFormatVersion = 1;
+constexpr size_t kTopologyHeaderSize = 40;
+inline constexpr char kTopologyMagic[8] = {'H', 'M', 'T', 'T',
+                                           'O', 'P', 'O', '\x1a'};
+
+struct TopologySnapshot {
+  HmtMap map;
+  std::vector<TopologicalHypothesis> hypotheses;
+};
+
+// The file's bytes. Throws std::invalid_argument if a hypothesis is invalid
+// or names an area the map does not have.
+std::string encode_topology(
+    const HmtMap& map, const std::vector<TopologicalHypothesis>& hypotheses);
+// Parses the file's bytes; `origin` names them in error messages. Throws
+// InputError.
+TopologySnapshot decode_topology(const std::string& bytes,
+                                 const std::string& origin);
+
+// Atomic write; throws OutputError if the file cannot be written (and
+// std::invalid_argument as encode_topology).
+void save_topology(const std::string& path, const HmtMap& map,
+                   const std::vector<TopologicalHypothesis>& hypotheses);
+// Throws InputError for a missing, unreadable, truncated or corrupt file.
+TopologySnapshot load_topology(const std::string& path);
+
+}  // namespace hmt::topology

@@ -1,0 +1,553 @@
+#include "hmt/topology/topology_file.h"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "hmt/common/error.h"
+#include "hmt/common/files.h"
+
+namespace hmt::topology {
+namespace {
+
+constexpr int kCellsPerTile = grid::kTileSize * grid::kTileSize;
+// Deflate never expands data by more than this factor when inflating
+// (its maximum compression ratio is about 1032:1).
+constexpr uint64_t kMaxInflateRatio = 1040;
+// A map's tile table is dense over the bounding box of its tiles; refuse
+// boxes larger than this many tiles (at 5 cm cells, 6.5 km a side).
+constexpr int64_t kMaxTileBoxArea = int64_t{1} << 24;
+// Tile coordinates whose cell indices fit comfortably in an int.
+constexpr int32_t kMaxTileCoord = 1 << 25;
+
+int floor_div(int a, int b) {
+  return a / b - ((a % b != 0) && ((a < 0) != (b < 0)));
+}
+
+uint32_t crc_of(const char* data, size_t size) {
+  return static_cast<uint32_t>(crc32_z(
+      crc32_z(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(data), size));
+}
+
+// ---------------------------------------------------------------- writing
+
+class Writer {
+ public:
+  void u8(uint8_t v) { out_.push_back(static_cast<char>(v)); }
+  void u32(uint32_t v) {
+    for (int i = 0; i < 4; ++i)
+      out_.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+  }
+  void u64(uint64_t v) {
+    for (int i = 0; i < 8; ++i)
+      out_.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+  }
+  void i32(int32_t v) { u32(static_cast<uint32_t>(v)); }
+  void f32(float v) {
+    uint32_t b;
+    std::memcpy(&b, &v, sizeof b);
+    u32(b);
+  }
+  void f64(double v) {
+    uint64_t b;
+    std::memcpy(&b, &v, sizeof b);
+    u64(b);
+  }
+  void pose(const Pose2D& p) {
+    f64(p.x);
+    f64(p.y);
+    f64(p.theta);
+  }
+  void count(size_t n, const char* what) {
+    if (n > 0xffffffffu)
+      throw std::invalid_argument(std::string("encode_topology: too many ") +
+                                  what);
+    u32(static_cast<uint32_t>(n));
+  }
+  std::string& bytes() { return out_; }
+
+ private:
+  std::string out_;
+};
+
+void write_grid(Writer& w, const grid::OccupancyGrid& g) {
+  w.f64(g.resolution());
+  grid::CellIndex lo, hi;
+  std::vector<std::pair<int, int>> tiles;  // (tx, ty), ascending ty then tx
+  if (g.bounds(&lo, &hi)) {
+    const int tx0 = floor_div(lo.x, grid::kTileSize),
+              ty0 = floor_div(lo.y, grid::kTileSize);
+    const int tx1 = floor_div(hi.x, grid::kTileSize),
+              ty1 = floor_div(hi.y, grid::kTileSize);
+    for (int ty = ty0; ty <= ty1; ++ty)
+      for (int tx = tx0; tx <= tx1; ++tx)
+        if (g.find({tx * grid::kTileSize, ty * grid::kTileSize}))
+          tiles.emplace_back(tx, ty);
+  }
+  w.count(tiles.size(), "tiles");
+  std::string plane(kCellsPerTile, '\0');
+  for (const auto& [tx, ty] : tiles) {
+    w.i32(tx);
+    w.i32(ty);
+    // find() of the tile's first cell points at cells[0] of its Tile, and a
+    // Tile's cells are one contiguous array: walk it in storage order.
+    const grid::Cell* cells =
+        g.find({tx * grid::kTileSize, ty * grid::kTileSize});
+    for (int field = 0; field < 4; ++field) {
+      for (int i = 0; i < kCellsPerTile; ++i) {
+        const grid::Cell& c = cells[i];
+        const uint8_t b = field == 0   ? static_cast<uint8_t>(c.logodds)
+                          : field == 1 ? c.hits
+                          : field == 2 ? static_cast<uint8_t>(c.hx)
+                                       : static_cast<uint8_t>(c.hy);
+        plane[static_cast<size_t>(i)] = static_cast<char>(b);
+      }
+      w.bytes() += plane;
+    }
+  }
+}
+
+void write_scan(Writer& w, const LaserScan& s) {
+  w.f64(s.timestamp);
+  w.f32(s.angle_min);
+  w.f32(s.angle_increment);
+  w.f32(s.max_range);
+  w.pose(s.sensor_pose);
+  w.count(s.ranges.size(), "beams");
+  for (float r : s.ranges) w.f32(r);
+  for (uint8_t v : s.valid) w.u8(v);
+}
+
+std::string encode_payload(
+    const HmtMap& map, const std::vector<TopologicalHypothesis>& hypotheses) {
+  Writer w;
+  const std::vector<AreaId> ids = map.area_ids();
+  w.count(ids.size(), "areas");
+  for (AreaId id : ids) {
+    const Area& a = map.area(id);
+    w.u32(a.id);
+    w.u32(a.frame.parent);
+    w.pose(a.frame.origin_in_parent);
+    w.u64(a.frame.created_step);
+    w.f64(a.frame.created_time);
+    w.count(a.keyframes.size(), "keyframes");
+    for (const Keyframe& k : a.keyframes) {
+      if (k.scan.valid.size() != k.scan.ranges.size())
+        throw std::invalid_argument(
+            "encode_topology: a keyframe's scan has different numbers of "
+            "ranges and validity flags");
+      w.pose(k.pose);
+      write_scan(w, k.scan);
+    }
+    w.u8(a.map ? 1 : 0);
+    if (a.map) write_grid(w, *a.map);
+  }
+  w.count(map.arcs().size(), "arcs");
+  for (const auto& kv : map.arcs()) {
+    const Arc& arc = kv.second;
+    w.u32(arc.from);
+    w.u32(arc.to);
+    w.pose(arc.pose.mean);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) w.f64(arc.pose.cov(r, c));
+    w.u32(arc.measurements);
+  }
+  w.count(hypotheses.size(), "hypotheses");
+  for (const TopologicalHypothesis& h : hypotheses) {
+    validate(h, &map);
+    w.f64(h.log_weight);
+    w.count(h.path.size(), "path entries");
+    for (const PathEntry& e : h.path) {
+      w.u32(e.area);
+      w.u64(e.step);
+    }
+  }
+  return std::move(w.bytes());
+}
+
+// ---------------------------------------------------------------- reading
+
+// Bounds-checked reader over the inflated payload. The payload passed its
+// checksum, so a failure here means a file written by something else (or a
+// bug): the messages say what was being read.
+class Reader {
+ public:
+  Reader(const std::string& bytes, const std::string& origin)
+      : data_(bytes), origin_(origin) {}
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InputError("topology file '" + origin_ + "': inconsistent content: " +
+                     what + " (at payload byte " + std::to_string(pos_) + ")");
+  }
+  void need(size_t n, const char* what) const {
+    if (data_.size() - pos_ < n)
+      fail(std::string("payload ends inside ") + what);
+  }
+  uint8_t u8(const char* what) {
+    need(1, what);
+    return static_cast<uint8_t>(data_[pos_++]);
+  }
+  uint32_t u32(const char* what) {
+    need(4, what);
+    uint32_t v = 0;
+    for (int i = 0; i < 4; ++i)
+      v |= static_cast<uint32_t>(static_cast<uint8_t>(data_[pos_++]))
+           << (8 * i);
+    return v;
+  }
+  uint64_t u64(const char* what) {
+    need(8, what);
+    uint64_t v = 0;
+    for (int i = 0; i < 8; ++i)
+      v |= static_cast<uint64_t>(static_cast<uint8_t>(data_[pos_++]))
+           << (8 * i);
+    return v;
+  }
+  int32_t i32(const char* what) { return static_cast<int32_t>(u32(what)); }
+  float f32(const char* what) {
+    const uint32_t b = u32(what);
+    float v;
+    std::memcpy(&v, &b, sizeof v);
+    return v;
+  }
+  double f64(const char* what) {
+    const uint64_t b = u64(what);
+    double v;
+    std::memcpy(&v, &b, sizeof v);
+    return v;
+  }
+  Pose2D pose(const char* what) {
+    Pose2D p;
+    p.x = f64(what);
+    p.y = f64(what);
+    p.theta = f64(what);
+    return p;
+  }
+  // A count of items of at least `min_item_bytes` each: must fit in what is
+  // left, so a bad count cannot ask for a huge allocation.
+  size_t count(size_t min_item_bytes, const char* what) {
+    const uint32_t n = u32(what);
+    if (static_cast<uint64_t>(n) * min_item_bytes > data_.size() - pos_)
+      fail(std::string("count of ") + what + " (" + std::to_string(n) +
+           ") exceeds the remaining data");
+    return n;
+  }
+  const char* take(size_t n, const char* what) {
+    need(n, what);
+    const char* p = data_.data() + pos_;
+    pos_ += n;
+    return p;
+  }
+  bool at_end() const { return pos_ == data_.size(); }
+
+ private:
+  const std::string& data_;
+  const std::string& origin_;
+  size_t pos_ = 0;
+};
+
+bool finite(const Pose2D& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
+}
+
+std::shared_ptr<const grid::OccupancyGrid> read_grid(Reader& r, AreaId id) {
+  const std::string where = "map of area " + std::to_string(id);
+  const double resolution = r.f64("map resolution");
+  if (!(resolution > 0.0) || !std::isfinite(resolution))
+    r.fail(where + ": resolution must be positive");
+  auto g = std::make_shared<grid::OccupancyGrid>(resolution);
+  const size_t tiles = r.count(8 + 4 * kCellsPerTile, "tiles");
+  std::set<std::pair<int32_t, int32_t>> seen;
+  int64_t x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  for (size_t t = 0; t < tiles; ++t) {
+    const int32_t tx = r.i32("tile coordinates"),
+                  ty = r.i32("tile coordinates");
+    if (tx <= -kMaxTileCoord || tx >= kMaxTileCoord || ty <= -kMaxTileCoord ||
+        ty >= kMaxTileCoord)
+      r.fail(where + ": tile coordinates out of range");
+    if (!seen.emplace(ty, tx).second)
+      r.fail(where + ": a tile is stored twice");
+    if (t == 0) {
+      x0 = x1 = tx;
+      y0 = y1 = ty;
+    } else {
+      x0 = std::min<int64_t>(x0, tx);
+      x1 = std::max<int64_t>(x1, tx);
+      y0 = std::min<int64_t>(y0, ty);
+      y1 = std::max<int64_t>(y1, ty);
+    }
+    if ((x1 - x0 + 1) * (y1 - y0 + 1) > kMaxTileBoxArea)
+      r.fail(where + ": tiles spread over an implausibly large area");
+    const char* planes = r.take(4 * kCellsPerTile, "tile cells");
+    grid::Tile& tile = g->mutable_tile(tx, ty);
+    for (int i = 0; i < kCellsPerTile; ++i) {
+      grid::Cell& c = tile.cells[static_cast<size_t>(i)];
+      c.logodds = static_cast<grid::LogOdds>(static_cast<uint8_t>(planes[i]));
+      c.hits = static_cast<uint8_t>(planes[kCellsPerTile + i]);
+      c.hx = static_cast<int8_t>(
+          static_cast<uint8_t>(planes[2 * kCellsPerTile + i]));
+      c.hy = static_cast<int8_t>(
+          static_cast<uint8_t>(planes[3 * kCellsPerTile + i]));
+    }
+  }
+  return g;
+}
+
+LaserScan read_scan(Reader& r) {
+  LaserScan s;
+  s.timestamp = r.f64("scan timestamp");
+  s.angle_min = r.f32("scan angles");
+  s.angle_increment = r.f32("scan angles");
+  s.max_range = r.f32("scan maximum range");
+  s.sensor_pose = r.pose("sensor pose");
+  const size_t n = r.count(5, "beams");
+  s.ranges.resize(n);
+  for (size_t i = 0; i < n; ++i) s.ranges[i] = r.f32("ranges");
+  const char* valid = r.take(n, "validity flags");
+  s.valid.assign(reinterpret_cast<const uint8_t*>(valid),
+                 reinterpret_cast<const uint8_t*>(valid) + n);
+  return s;
+}
+
+TopologySnapshot decode_payload(const std::string& payload,
+                                const std::string& origin) {
+  Reader r(payload, origin);
+  TopologySnapshot snap;
+  HmtMap& map = snap.map;
+
+  // Areas. Parents may be listed after their children (ids are the caller's
+  // choice), so frames are checked once every area is known.
+  const size_t areas = r.count(4 + 4 + 24 + 8 + 8 + 4 + 1, "areas");
+  std::vector<std::pair<AreaId, ReferenceFrame>> frames;
+  struct Pending {
+    std::vector<Keyframe> keyframes;
+    std::shared_ptr<const grid::OccupancyGrid> map;
+  };
+  std::vector<Pending> contents;
+  for (size_t i = 0; i < areas; ++i) {
+    const AreaId id = r.u32("area id");
+    if (id == kNoArea) r.fail("an area has the reserved id 0xffffffff");
+    if (!frames.empty() && id <= frames.back().first)
+      r.fail("area ids are not strictly ascending (" + std::to_string(id) +
+             " after " + std::to_string(frames.back().first) + ")");
+    ReferenceFrame f;
+    f.parent = r.u32("area frame");
+    f.origin_in_parent = r.pose("area frame");
+    f.created_step = r.u64("area frame");
+    f.created_time = r.f64("area frame");
+    if (!finite(f.origin_in_parent))
+      r.fail("area " + std::to_string(id) + ": non-finite frame origin");
+    frames.emplace_back(id, f);
+    Pending p;
+    const size_t keyframes = r.count(24 + 8 + 12 + 24 + 4, "keyframes");
+    p.keyframes.reserve(keyframes);
+    for (size_t k = 0; k < keyframes; ++k) {
+      Keyframe kf;
+      kf.pose = r.pose("keyframe pose");
+      if (!finite(kf.pose))
+        r.fail("area " + std::to_string(id) + ": non-finite keyframe pose");
+      kf.scan = read_scan(r);
+      p.keyframes.push_back(std::move(kf));
+    }
+    const uint8_t has_map = r.u8("map flag");
+    if (has_map > 1) r.fail("area " + std::to_string(id) + ": bad map flag");
+    if (has_map) p.map = read_grid(r, id);
+    contents.push_back(std::move(p));
+  }
+  std::set<AreaId> ids;
+  for (const auto& kv : frames) ids.insert(kv.first);
+  for (const auto& kv : frames)
+    if (kv.second.parent != kNoArea &&
+        (kv.second.parent == kv.first || !ids.count(kv.second.parent)))
+      r.fail("area " + std::to_string(kv.first) + " has parent " +
+             std::to_string(kv.second.parent) + ", which is not another area");
+  // Insert parents before children: a root-first walk of the frame forest.
+  {
+    std::map<AreaId, size_t> index;
+    for (size_t i = 0; i < frames.size(); ++i) index[frames[i].first] = i;
+    std::vector<bool> added(frames.size(), false);
+    size_t done = 0;
+    while (done < frames.size()) {
+      const size_t before = done;
+      for (size_t i = 0; i < frames.size(); ++i) {
+        if (added[i]) continue;
+        const AreaId parent = frames[i].second.parent;
+        if (parent != kNoArea && !added[index.at(parent)]) continue;
+        map.add_area(frames[i].first, frames[i].second);
+        for (auto& kf : contents[i].keyframes)
+          map.add_keyframe(frames[i].first, std::move(kf));
+        if (contents[i].map) map.set_map(frames[i].first, contents[i].map);
+        added[i] = true;
+        ++done;
+      }
+      if (done == before) r.fail("the areas' parents form a cycle");
+    }
+  }
+
+  const size_t arcs = r.count(8 + 24 + 72 + 4, "arcs");
+  std::pair<AreaId, AreaId> last{0, 0};
+  for (size_t i = 0; i < arcs; ++i) {
+    Arc arc;
+    arc.from = r.u32("arc");
+    arc.to = r.u32("arc");
+    arc.pose.mean = r.pose("arc mean");
+    for (int row = 0; row < 3; ++row)
+      for (int col = 0; col < 3; ++col)
+        arc.pose.cov(row, col) = r.f64("arc covariance");
+    arc.measurements = r.u32("arc");
+    const std::string name =
+        "arc " + std::to_string(arc.from) + "-" + std::to_string(arc.to);
+    if (arc.from >= arc.to) r.fail(name + ": areas not in ascending order");
+    if (i > 0 && std::make_pair(arc.from, arc.to) <= last)
+      r.fail(name + ": arcs not strictly ascending");
+    last = {arc.from, arc.to};
+    if (!map.has_area(arc.from) || !map.has_area(arc.to))
+      r.fail(name + ": joins an area that does not exist");
+    if (!finite(arc.pose.mean) || std::abs(arc.pose.mean.theta) > M_PI)
+      r.fail(name + ": mean is not a finite pose with its angle in [-pi, pi]");
+    if (!is_positive_definite(arc.pose.cov))
+      r.fail(name + ": covariance is not symmetric positive definite");
+    if (arc.measurements < 1) r.fail(name + ": no measurements");
+    map.set_arc(arc);
+  }
+
+  const size_t hypotheses = r.count(8 + 4 + 12, "hypotheses");
+  snap.hypotheses.reserve(hypotheses);
+  for (size_t i = 0; i < hypotheses; ++i) {
+    TopologicalHypothesis h;
+    h.log_weight = r.f64("hypothesis weight");
+    const size_t n = r.count(12, "path entries");
+    h.path.reserve(n);
+    for (size_t k = 0; k < n; ++k) {
+      PathEntry e;
+      e.area = r.u32("path entry");
+      e.step = r.u64("path entry");
+      h.path.push_back(e);
+    }
+    try {
+      validate(h, &map);
+    } catch (const std::invalid_argument& ex) {
+      r.fail("hypothesis " + std::to_string(i) + ": " + ex.what());
+    }
+    snap.hypotheses.push_back(std::move(h));
+  }
+  if (!r.at_end()) r.fail("unexpected data after the hypotheses");
+  return snap;
+}
+
+uint32_t get_u32(const std::string& b, size_t at) {
+  uint32_t v = 0;
+  for (int i = 0; i < 4; ++i)
+    v |= static_cast<uint32_t>(static_cast<uint8_t>(b[at + i])) << (8 * i);
+  return v;
+}
+uint64_t get_u64(const std::string& b, size_t at) {
+  uint64_t v = 0;
+  for (int i = 0; i < 8; ++i)
+    v |= static_cast<uint64_t>(static_cast<uint8_t>(b[at + i])) << (8 * i);
+  return v;
+}
+
+}  // namespace
+
+std::string encode_topology(
+    const HmtMap& map, const std::vector<TopologicalHypothesis>& hypotheses) {
+  const std::string payload = encode_payload(map, hypotheses);
+  uLongf stored = compressBound(payload.size());
+  std::string file(kTopologyHeaderSize + stored, '\0');
+  const int rc =
+      compress2(reinterpret_cast<Bytef*>(&file[kTopologyHeaderSize]), &stored,
+                reinterpret_cast<const Bytef*>(payload.data()), payload.size(),
+                Z_DEFAULT_COMPRESSION);
+  if (rc != Z_OK)
+    throw std::runtime_error("encode_topology: zlib compression failed (" +
+                             std::to_string(rc) + ")");
+  file.resize(kTopologyHeaderSize + stored);
+
+  Writer h;
+  h.bytes().assign(kTopologyMagic, sizeof kTopologyMagic);
+  h.u32(kTopologyFormatVersion);
+  h.u32(0);
+  h.u64(payload.size());
+  h.u64(stored);
+  h.u32(crc_of(payload.data(), payload.size()));
+  h.u32(crc_of(h.bytes().data(), h.bytes().size()));
+  file.replace(0, kTopologyHeaderSize, h.bytes());
+  return file;
+}
+
+TopologySnapshot decode_topology(const std::string& bytes,
+                                 const std::string& origin) {
+  const std::string name = "topology file '" + origin + "'";
+  if (bytes.empty()) throw InputError(name + " is empty");
+  const size_t magic = std::min(bytes.size(), sizeof kTopologyMagic);
+  if (std::memcmp(bytes.data(), kTopologyMagic, magic) != 0)
+    throw InputError(name + " is not an HMT topology file (bad magic)");
+  if (bytes.size() < kTopologyHeaderSize)
+    throw InputError(name + " is truncated: " + std::to_string(bytes.size()) +
+                     " bytes, shorter than its " +
+                     std::to_string(kTopologyHeaderSize) + "-byte header");
+  const uint32_t version = get_u32(bytes, 8);
+  if (version != kTopologyFormatVersion)
+    throw InputError(name + " has format version " + std::to_string(version) +
+                     "; this build reads version " +
+                     std::to_string(kTopologyFormatVersion));
+  if (crc_of(bytes.data(), 36) != get_u32(bytes, 36))
+    throw InputError(name + " is corrupt: header checksum mismatch");
+  if (get_u32(bytes, 12) != 0)
+    throw InputError(name + " uses unknown format flags");
+  const uint64_t payload_size = get_u64(bytes, 16);
+  const uint64_t stored = get_u64(bytes, 24);
+  const uint64_t available = bytes.size() - kTopologyHeaderSize;
+  if (available < stored)
+    throw InputError(name + " is truncated: " + std::to_string(available) +
+                     " of " + std::to_string(stored) + " bytes of map data");
+  if (available > stored)
+    throw InputError(name +
+                     " is corrupt: " + std::to_string(available - stored) +
+                     " unexpected bytes after the map data");
+  if (payload_size > kMaxInflateRatio * stored + 64)
+    throw InputError(name +
+                     " is corrupt: its header claims an impossible size");
+
+  std::string payload(payload_size, '\0');
+  uLongf inflated = payload_size;
+  const int rc = uncompress(
+      reinterpret_cast<Bytef*>(payload.data()), &inflated,
+      reinterpret_cast<const Bytef*>(bytes.data() + kTopologyHeaderSize),
+      stored);
+  if (rc != Z_OK || inflated != payload_size)
+    throw InputError(name + " is corrupt: the map data does not inflate (" +
+                     std::string(rc == Z_OK ? "wrong size" : zError(rc)) + ")");
+  if (crc_of(payload.data(), payload.size()) != get_u32(bytes, 32))
+    throw InputError(name + " is corrupt: map data checksum mismatch");
+  return decode_payload(payload, origin);
+}
+
+void save_topology(const std::string& path, const HmtMap& map,
+                   const std::vector<TopologicalHypothesis>& hypotheses) {
+  const std::string bytes = encode_topology(map, hypotheses);
+  write_file_atomically(path, [&](std::ostream& os) {
+    os.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  });
+}
+
+TopologySnapshot load_topology(const std::string& path) {
+  require_readable_file(path, "topology file");
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)),
+                    std::istreambuf_iterator<char>());
+  if (in.bad())
+    throw InputError("topology file '" + path + "' could not be read");
+  return decode_topology(bytes, path);
+}
+
+}  // namespace hmt::topology

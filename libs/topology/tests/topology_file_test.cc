@@ -1,0 +1,487 @@
+#include "hmt/topology/topology_file.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <stdexcept>
+
+#include "hmt/common/error.h"
+#include "hmt/common/random.h"
+
+namespace hmt::topology {
+namespace {
+namespace fs = std::filesystem;
+
+// ------------------------------------------------------------ fixtures
+
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() /
+            ("hmt_topology_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  std::string file(const std::string& name) const {
+    return (path_ / name).string();
+  }
+
+ private:
+  fs::path path_;
+};
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+void write_bytes(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+// Every field of some cells in several tiles, negative coordinates included.
+grid::OccupancyGrid random_grid(double resolution, Random& rng) {
+  grid::OccupancyGrid g(resolution);
+  for (int i = 0; i < 3000; ++i) {
+    grid::Cell& c = g.mutable_cell({static_cast<int>(rng.uniform(-90, 70)),
+                                    static_cast<int>(rng.uniform(-40, 100))});
+    c.logodds = static_cast<int8_t>(rng.uniform(-127, 127));
+    c.hits = static_cast<uint8_t>(rng.uniform(0, 255));
+    c.hx = static_cast<int8_t>(rng.uniform(-127, 127));
+    c.hy = static_cast<int8_t>(rng.uniform(-127, 127));
+  }
+  return g;
+}
+
+Keyframe random_keyframe(Random& rng, int beams) {
+  Keyframe k;
+  k.pose = Pose2D(rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-3, 3));
+  k.scan.timestamp = 1.6e9 + rng.uniform(0, 100);
+  k.scan.angle_min = static_cast<float>(-M_PI / 2);
+  k.scan.angle_increment = static_cast<float>(M_PI / (beams - 1));
+  k.scan.max_range = 30.0f;
+  k.scan.sensor_pose = Pose2D(0.2, 0.0, 0.01);
+  for (int i = 0; i < beams; ++i) {
+    k.scan.ranges.push_back(static_cast<float>(rng.uniform(0.1, 30)));
+    k.scan.valid.push_back(rng.uniform() < 0.9 ? 1 : 0);
+  }
+  k.scan.ranges[0] = std::numeric_limits<float>::quiet_NaN();
+  k.scan.ranges[1] = std::numeric_limits<float>::infinity();
+  return k;
+}
+
+Eigen::Matrix3d correlated(double s) {
+  Eigen::Matrix3d c;
+  c << 0.04, 0.01, 0.002,  //
+      0.01, 0.09, -0.003,  //
+      0.002, -0.003, 0.0025;
+  return s * c;
+}
+
+struct Fixture {
+  HmtMap map;
+  std::vector<TopologicalHypothesis> hypotheses;
+};
+
+Fixture sample_topology() {
+  Random rng(99);
+  Fixture f;
+  HmtMap& m = f.map;
+  m.add_area(0, {kNoArea, Pose2D(), 0, 100.0});
+  m.add_area(1, {0, Pose2D(4.5, -0.5, 0.7), 140, 114.0});
+  m.add_area(2, {1, Pose2D(3.0, 2.0, -2.9), 260, 126.0});
+  m.add_area(7, {0, Pose2D(-3.0, 1.0, 3.1), 400, 140.0});
+  for (int i = 0; i < 3; ++i) m.add_keyframe(0, random_keyframe(rng, 181));
+  m.add_keyframe(1, random_keyframe(rng, 361));
+  m.add_keyframe(7, random_keyframe(rng, 2));
+  grid::OccupancyGrid g0 = random_grid(0.05, rng);
+  grid::OccupancyGrid g1 = g0;  // shares g0's tiles in memory ...
+  for (int i = 0; i < 50; ++i)  // ... except where it is changed
+    g1.mutable_cell({static_cast<int>(rng.uniform(-20, 20)), 5}).logodds = 77;
+  m.archive_map(0, g0);
+  m.archive_map(1, g1);
+  m.archive_map(7, grid::OccupancyGrid(0.1));  // archived, but empty
+  // Area 2 is the current area: no archived map.
+  m.add_arc_measurement(0, 1,
+                        PoseGaussian(Pose2D(4.5, -0.5, 0.7), correlated(1)));
+  m.add_arc_measurement(
+      1, 0, inverse(PoseGaussian(Pose2D(4.4, -0.4, 0.72), correlated(2))));
+  m.add_arc_measurement(2, 1,
+                        PoseGaussian(Pose2D(-1, 3, 3.0), correlated(0.5)));
+  m.add_arc_measurement(0, 7, PoseGaussian(Pose2D(-3, 1, 3.1), correlated(3)));
+
+  TopologicalHypothesis a, b, c;
+  for (auto* h : {&a, &b, &c}) {
+    enter_area(*h, 0, 0);
+    enter_area(*h, 1, 140);
+  }
+  enter_area(a, 2, 260);
+  enter_area(b, 7, 260);
+  enter_area(c, 2, 261);
+  a.log_weight = -1.5;
+  b.log_weight = -std::numeric_limits<double>::infinity();
+  c.log_weight = -1234.25;
+  f.hypotheses = {a, b, c};
+  return f;
+}
+
+// ------------------------------------------------------------ comparison
+
+uint64_t bits(double v) {
+  uint64_t b;
+  std::memcpy(&b, &v, sizeof b);
+  return b;
+}
+uint32_t bits(float v) {
+  uint32_t b;
+  std::memcpy(&b, &v, sizeof b);
+  return b;
+}
+void expect_same_pose(const Pose2D& a, const Pose2D& b) {
+  EXPECT_EQ(bits(a.x), bits(b.x));
+  EXPECT_EQ(bits(a.y), bits(b.y));
+  EXPECT_EQ(bits(a.theta), bits(b.theta));
+}
+
+void expect_same_grid(const grid::OccupancyGrid& a,
+                      const grid::OccupancyGrid& b) {
+  EXPECT_EQ(bits(a.resolution()), bits(b.resolution()));
+  EXPECT_EQ(a.tile_count(), b.tile_count());
+  grid::CellIndex alo, ahi, blo, bhi;
+  const bool any = a.bounds(&alo, &ahi);
+  ASSERT_EQ(any, b.bounds(&blo, &bhi));
+  if (!any) return;
+  ASSERT_EQ(alo.x, blo.x);
+  ASSERT_EQ(alo.y, blo.y);
+  ASSERT_EQ(ahi.x, bhi.x);
+  ASSERT_EQ(ahi.y, bhi.y);
+  size_t cells = 0, differing = 0;
+  for (int y = alo.y; y <= ahi.y; ++y)
+    for (int x = alo.x; x <= ahi.x; ++x) {
+      const grid::Cell* ca = a.find({x, y});
+      const grid::Cell* cb = b.find({x, y});
+      if ((ca == nullptr) != (cb == nullptr)) {
+        ++differing;
+        continue;
+      }
+      if (!ca) continue;
+      ++cells;
+      if (ca->logodds != cb->logodds || ca->hits != cb->hits ||
+          ca->hx != cb->hx || ca->hy != cb->hy)
+        ++differing;
+    }
+  EXPECT_EQ(differing, 0u);
+  EXPECT_EQ(cells, a.tile_count() * grid::kTileSize * grid::kTileSize);
+}
+
+void expect_same(const TopologySnapshot& got, const Fixture& want) {
+  ASSERT_EQ(got.map.area_ids(), want.map.area_ids());
+  for (AreaId id : want.map.area_ids()) {
+    SCOPED_TRACE("area " + std::to_string(id));
+    const Area& a = got.map.area(id);
+    const Area& b = want.map.area(id);
+    EXPECT_EQ(a.id, b.id);
+    EXPECT_EQ(a.frame.parent, b.frame.parent);
+    expect_same_pose(a.frame.origin_in_parent, b.frame.origin_in_parent);
+    EXPECT_EQ(a.frame.created_step, b.frame.created_step);
+    EXPECT_EQ(bits(a.frame.created_time), bits(b.frame.created_time));
+    ASSERT_EQ(a.keyframes.size(), b.keyframes.size());
+    for (size_t k = 0; k < a.keyframes.size(); ++k) {
+      const LaserScan& sa = a.keyframes[k].scan;
+      const LaserScan& sb = b.keyframes[k].scan;
+      expect_same_pose(a.keyframes[k].pose, b.keyframes[k].pose);
+      EXPECT_EQ(bits(sa.timestamp), bits(sb.timestamp));
+      EXPECT_EQ(bits(sa.angle_min), bits(sb.angle_min));
+      EXPECT_EQ(bits(sa.angle_increment), bits(sb.angle_increment));
+      EXPECT_EQ(bits(sa.max_range), bits(sb.max_range));
+      expect_same_pose(sa.sensor_pose, sb.sensor_pose);
+      ASSERT_EQ(sa.ranges.size(), sb.ranges.size());
+      for (size_t i = 0; i < sa.ranges.size(); ++i)
+        EXPECT_EQ(bits(sa.ranges[i]), bits(sb.ranges[i]));
+      EXPECT_EQ(sa.valid, sb.valid);
+    }
+    ASSERT_EQ(a.map != nullptr, b.map != nullptr);
+    if (a.map) expect_same_grid(*a.map, *b.map);
+  }
+  ASSERT_EQ(got.map.arcs().size(), want.map.arcs().size());
+  for (const auto& kv : want.map.arcs()) {
+    const Arc* a = got.map.find_arc(kv.first.first, kv.first.second);
+    ASSERT_NE(a, nullptr);
+    EXPECT_EQ(a->from, kv.second.from);
+    EXPECT_EQ(a->to, kv.second.to);
+    EXPECT_EQ(a->measurements, kv.second.measurements);
+    expect_same_pose(a->pose.mean, kv.second.pose.mean);
+    for (int i = 0; i < 9; ++i)
+      EXPECT_EQ(bits(a->pose.cov.data()[i]),
+                bits(kv.second.pose.cov.data()[i]));
+  }
+  ASSERT_EQ(got.hypotheses.size(), want.hypotheses.size());
+  for (size_t i = 0; i < got.hypotheses.size(); ++i) {
+    EXPECT_EQ(got.hypotheses[i].path, want.hypotheses[i].path);
+    EXPECT_EQ(bits(got.hypotheses[i].log_weight),
+              bits(want.hypotheses[i].log_weight));
+  }
+}
+
+// ------------------------------------------------------------ container
+
+void put_u32(std::string& s, uint32_t v) {
+  for (int i = 0; i < 4; ++i)
+    s.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+}
+void put_u64(std::string& s, uint64_t v) {
+  for (int i = 0; i < 8; ++i)
+    s.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+}
+void put_f64(std::string& s, double v) { put_u64(s, bits(v)); }
+uint32_t crc(const std::string& s, size_t n) {
+  return static_cast<uint32_t>(crc32(
+      0L, reinterpret_cast<const Bytef*>(s.data()), static_cast<uInt>(n)));
+}
+
+// The payload of a file (inflated), and a file around a payload, written
+// here from the layout documented in topology_file.h.
+std::string unwrap(const std::string& file) {
+  uint64_t size = 0;
+  for (int i = 0; i < 8; ++i)
+    size |= static_cast<uint64_t>(static_cast<uint8_t>(file[16 + i]))
+            << (8 * i);
+  std::string payload(size, '\0');
+  uLongf n = size;
+  EXPECT_EQ(uncompress(reinterpret_cast<Bytef*>(payload.data()), &n,
+                       reinterpret_cast<const Bytef*>(file.data() + 40),
+                       file.size() - 40),
+            Z_OK);
+  return payload;
+}
+std::string wrap(const std::string& payload) {
+  uLongf n = compressBound(payload.size());
+  std::string z(n, '\0');
+  EXPECT_EQ(
+      compress(reinterpret_cast<Bytef*>(z.data()), &n,
+               reinterpret_cast<const Bytef*>(payload.data()), payload.size()),
+      Z_OK);
+  z.resize(n);
+  std::string h(kTopologyMagic, 8);
+  put_u32(h, kTopologyFormatVersion);
+  put_u32(h, 0);
+  put_u64(h, payload.size());
+  put_u64(h, z.size());
+  put_u32(h, crc(payload, payload.size()));
+  put_u32(h, crc(h, h.size()));
+  return h + z;
+}
+
+// Expects decode to fail with an InputError whose message names the origin
+// and contains `needle`.
+void expect_input_error(const std::string& bytes, const std::string& needle) {
+  try {
+    decode_topology(bytes, "test.hmt");
+    ADD_FAILURE() << "no error; expected one containing '" << needle << "'";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.code(), ExitCode::kInput);
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("test.hmt"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(needle), std::string::npos) << msg;
+  }
+}
+
+// ------------------------------------------------------------ tests
+
+TEST(TopologyFile, RoundTripRestoresEverythingExactly) {
+  TempDir dir;
+  const Fixture f = sample_topology();
+  const std::string path = dir.file("map.hmt");
+  save_topology(path, f.map, f.hypotheses);
+  const TopologySnapshot got = load_topology(path);
+  expect_same(got, f);
+  // The loaded map is a working map: arcs fuse, hypotheses give a PMF.
+  EXPECT_NEAR(position_pmf(got.hypotheses).at(2), 1.0, 1e-12);
+  EXPECT_EQ(got.map.area(0).map->logodds({0, 0}),
+            f.map.area(0).map->logodds({0, 0}));
+  // Saving what was loaded gives the same bytes.
+  EXPECT_EQ(encode_topology(got.map, got.hypotheses), read_bytes(path));
+  // No temporary left next to the file.
+  size_t files = 0;
+  for (const auto& e : fs::directory_iterator(dir.file(""))) {
+    (void)e;
+    ++files;
+  }
+  EXPECT_EQ(files, 1u);
+}
+
+TEST(TopologyFile, EmptyMapRoundTrips) {
+  const std::string bytes = encode_topology(HmtMap(), {});
+  const TopologySnapshot got = decode_topology(bytes, "empty");
+  EXPECT_EQ(got.map.area_count(), 0u);
+  EXPECT_TRUE(got.map.arcs().empty());
+  EXPECT_TRUE(got.hypotheses.empty());
+}
+
+TEST(TopologyFile, OnlyAllocatedTilesAreStoredAndDeflated) {
+  // Two tiles 3000 tiles apart, plus a block of uniform free space: the
+  // file holds the tiles, not their bounding box, and deflates the rest.
+  HmtMap m;
+  m.add_area(0);
+  grid::OccupancyGrid g(0.05);
+  g.mutable_cell({-48000, 5}).logodds = 40;
+  g.mutable_cell({48000, 5}).logodds = 40;
+  for (int y = 0; y < 320; ++y)
+    for (int x = 0; x < 320; ++x) g.mutable_cell({x, y + 992}).logodds = -20;
+  m.archive_map(0, g);
+  const std::string bytes = encode_topology(m, {});
+  EXPECT_EQ(g.tile_count(), 102u);
+  EXPECT_LT(bytes.size(), 4000u);  // vs 102 * 4 KiB of cells
+  const TopologySnapshot got = decode_topology(bytes, "sparse");
+  EXPECT_EQ(got.map.area(0).map->tile_count(), 102u);
+  EXPECT_EQ(got.map.area(0).map->logodds({48000, 5}), 40);
+  EXPECT_EQ(got.map.area(0).map->logodds({319, 1311}), -20);
+  EXPECT_EQ(got.map.area(0).map->find({0, 5}), nullptr);
+}
+
+TEST(TopologyFile, TruncatedFilesAreInputErrors) {
+  const Fixture f = sample_topology();
+  const std::string bytes = encode_topology(f.map, f.hypotheses);
+  ASSERT_GT(bytes.size(), 1000u);
+  expect_input_error("", "is empty");
+  for (size_t n : {size_t{3}, size_t{8}, size_t{20}, size_t{39}})
+    expect_input_error(bytes.substr(0, n), "truncated");
+  for (size_t n : {size_t{40}, size_t{41}, bytes.size() / 2, bytes.size() - 1})
+    expect_input_error(bytes.substr(0, n), "truncated");
+  // And through the file API.
+  TempDir dir;
+  write_bytes(dir.file("cut.hmt"), bytes.substr(0, bytes.size() - 7));
+  try {
+    load_topology(dir.file("cut.hmt"));
+    ADD_FAILURE() << "a truncated file loaded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cut.hmt' is truncated"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(load_topology(dir.file("missing.hmt")), InputError);
+}
+
+TEST(TopologyFile, CorruptFilesAreInputErrors) {
+  const Fixture f = sample_topology();
+  const std::string good = encode_topology(f.map, f.hypotheses);
+  std::string s = good;
+  s[0] = 'X';
+  expect_input_error(s, "bad magic");
+  expect_input_error("PK\x03\x04 something else entirely, long enough",
+                     "bad magic");
+  s = good;
+  s[8] = 2;  // version 2
+  expect_input_error(s, "format version 2");
+  s = good;
+  s[20] ^= 0x10;  // the payload size
+  expect_input_error(s, "header checksum");
+  s = good;
+  s[good.size() / 2] ^= 0x5a;  // inside the deflated data
+  expect_input_error(s, "corrupt");
+  expect_input_error(good + "x", "unexpected bytes");
+  // Whatever byte is damaged, the answer is an InputError (never a crash,
+  // a bad_alloc or a silently different map).
+  Random rng(1);
+  for (int i = 0; i < 200; ++i) {
+    s = good;
+    const size_t at =
+        static_cast<size_t>(rng.uniform(0, static_cast<double>(good.size())));
+    s[at] =
+        static_cast<char>(s[at] ^ (1 + static_cast<int>(rng.uniform(0, 255))));
+    EXPECT_THROW(decode_topology(s, "flip"), InputError) << "byte " << at;
+  }
+}
+
+TEST(TopologyFile, InconsistentContentIsAnInputError) {
+  // Checksum-valid files whose content breaks an invariant (as a file
+  // written by other software could): built from the payload of a two-area
+  // map, whose last 8 bytes are the arc and hypothesis counts (both 0).
+  HmtMap m;
+  m.add_area(0);
+  m.add_area(1, {0, Pose2D(1, 0, 0), 10, 1.0});
+  const std::string base = unwrap(encode_topology(m, {}));
+  ASSERT_EQ(base.substr(base.size() - 8), std::string(8, '\0'));
+  const std::string head = base.substr(0, base.size() - 8);
+  EXPECT_NO_THROW(decode_topology(wrap(base), "ok"));
+
+  auto arc = [&](uint32_t from, uint32_t to, double var) {
+    std::string s = head;
+    put_u32(s, 1);
+    put_u32(s, from);
+    put_u32(s, to);
+    put_f64(s, 1.0);
+    put_f64(s, 0.0);
+    put_f64(s, 0.0);
+    for (int i = 0; i < 9; ++i) put_f64(s, i % 4 == 0 ? var : 0.0);
+    put_u32(s, 1);
+    return s;
+  };
+  std::string s = arc(0, 1, 0.1);
+  put_u32(s, 0);
+  EXPECT_NO_THROW(decode_topology(wrap(s), "ok"));
+  s = arc(0, 7, 0.1);
+  put_u32(s, 0);
+  expect_input_error(wrap(s), "does not exist");
+  s = arc(0, 1, 0.0);
+  put_u32(s, 0);
+  expect_input_error(wrap(s), "positive definite");
+  s = arc(1, 0, 0.1);
+  put_u32(s, 0);
+  expect_input_error(wrap(s), "ascending");
+
+  // A hypothesis in an area the map does not have.
+  s = head;
+  put_u32(s, 0);  // no arcs
+  put_u32(s, 1);
+  put_f64(s, 0.0);
+  put_u32(s, 2);
+  put_u32(s, 0);
+  put_u64(s, 0);
+  put_u32(s, 9);
+  put_u64(s, 5);
+  expect_input_error(wrap(s), "hypothesis 0");
+  // Extra bytes, and a payload that stops short.
+  expect_input_error(wrap(base + "z"), "unexpected data");
+  expect_input_error(wrap(base.substr(0, base.size() - 3)), "payload ends");
+  // A count that cannot fit the data left.
+  s = head;
+  put_u32(s, 0xffffffffu);
+  expect_input_error(wrap(s), "exceeds the remaining data");
+}
+
+TEST(TopologyFile, FailedSavesLeaveTheEarlierFileIntact) {
+  TempDir dir;
+  const Fixture f = sample_topology();
+  const std::string path = dir.file("map.hmt");
+  save_topology(path, f.map, f.hypotheses);
+  const std::string before = read_bytes(path);
+  // A hypothesis naming an area the map lacks is refused before writing.
+  std::vector<TopologicalHypothesis> bad = f.hypotheses;
+  enter_area(bad[0], 42, 1000);
+  EXPECT_THROW(save_topology(path, f.map, bad), std::invalid_argument);
+  EXPECT_EQ(read_bytes(path), before);
+  // An unwritable destination is an OutputError.
+  try {
+    save_topology(dir.file("no/such/dir/map.hmt"), f.map, f.hypotheses);
+    ADD_FAILURE() << "saved into a missing directory";
+  } catch (const OutputError& e) {
+    EXPECT_EQ(e.code(), ExitCode::kOutput);
+  }
+  EXPECT_EQ(read_bytes(path), before);
+}
+
+}  // namespace
+}  // namespace hmt::topology
