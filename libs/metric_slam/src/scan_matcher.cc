@@ -1,5 +1,6 @@
 #include "hmt/metric_slam/scan_matcher.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -56,20 +57,45 @@ void ScanMatcher::for_each_match(const grid::OccupancyGrid& map, const Pose2D& p
     const grid::CellIndex hc = map.cell_of(hx, hy), fc = map.cell_of(fx, fy);
     double best = std::numeric_limits<double>::infinity();
     Point2D best_mean;
-    for (int dy = -w; dy <= w; ++dy)
-      for (int dx = -w; dx <= w; ++dx) {
-        const grid::CellIndex cq{hc.x + dx, hc.y + dy};
-        const grid::Cell* cell = map.find(cq);
-        if (!cell || cell->logodds < occ_threshold_) continue;
-        const grid::Cell* fcell = map.find({fc.x + dx, fc.y + dy});
-        if (fcell && fcell->logodds >= occ_threshold_) continue;
-        const Point2D m = map.hit_mean(cq, *cell);
-        const double d2 = (hx - m.x) * (hx - m.x) + (hy - m.y) * (hy - m.y);
-        if (d2 < best) {
-          best = d2;
-          best_mean = m;
-        }
+    auto consider = [&](const grid::CellIndex& cq, const grid::Cell& cell) {
+      const Point2D m = map.hit_mean(cq, cell);
+      const double d2 = (hx - m.x) * (hx - m.x) + (hy - m.y) * (hy - m.y);
+      if (d2 < best) {
+        best = d2;
+        best_mean = m;
       }
+    };
+    using grid::kTileBits;
+    const int tx = (hc.x - w) >> kTileBits, ty = (hc.y - w) >> kTileBits;
+    const int ftx = (fc.x - w) >> kTileBits, fty = (fc.y - w) >> kTileBits;
+    if (tx == (hc.x + w) >> kTileBits && ty == (hc.y + w) >> kTileBits &&
+        ftx == (fc.x + w) >> kTileBits && fty == (fc.y + w) >> kTileBits) {
+      // Fast path (most beams): both windows lie inside single tiles, so
+      // the tiles are fetched once rather than once per cell.
+      const grid::Tile* th = map.tile(tx, ty);
+      if (!th) continue;  // never observed: no obstacle to match
+      const grid::Tile* tf = map.tile(ftx, fty);
+      for (int dy = -w; dy <= w; ++dy)
+        for (int dx = -w; dx <= w; ++dx) {
+          const grid::CellIndex cq{hc.x + dx, hc.y + dy};
+          const grid::Cell& cell = grid::OccupancyGrid::cell_in(*th, cq);
+          if (cell.logodds < occ_threshold_) continue;
+          if (tf && grid::OccupancyGrid::cell_in(*tf, {fc.x + dx, fc.y + dy}).logodds >=
+                        occ_threshold_)
+            continue;
+          consider(cq, cell);
+        }
+    } else {
+      for (int dy = -w; dy <= w; ++dy)
+        for (int dx = -w; dx <= w; ++dx) {
+          const grid::CellIndex cq{hc.x + dx, hc.y + dy};
+          const grid::Cell* cell = map.find(cq);
+          if (!cell || cell->logodds < occ_threshold_) continue;
+          const grid::Cell* fcell = map.find({fc.x + dx, fc.y + dy});
+          if (fcell && fcell->logodds >= occ_threshold_) continue;
+          consider(cq, *cell);
+        }
+    }
     if (best < std::numeric_limits<double>::infinity()) f(i, hx, hy, best, best_mean);
   }
 }
@@ -136,42 +162,45 @@ Pose2D ScanMatcher::hill_climb(const grid::OccupancyGrid& map, const Pose2D& sta
   return best;
 }
 
-bool ScanMatcher::gauss_newton_step(const grid::OccupancyGrid& map,
-                                    const ScanPoints& scan, Pose2D* pose) const {
+int ScanMatcher::normal_equations(const grid::OccupancyGrid& map,
+                                  const ScanPoints& scan, const Pose2D& pose,
+                                  Eigen::Matrix3d* H, Eigen::Vector3d* g) const {
   // Point-to-point residuals r_i = T(pose) p_i - m_i against each beam's
   // nearest hit mean; J_i = [I | dR/dtheta p_i].
-  double H[6] = {0, 0, 0, 0, 0, 0};  // upper triangle of the 3x3 J^T J
-  double g[3] = {0, 0, 0};
+  H->setZero();
+  g->setZero();
   int n = 0;
-  const double c = std::cos(pose->theta), s = std::sin(pose->theta);
-  for_each_match(map, *pose, scan, opt_.window,
+  const double c = std::cos(pose.theta), s = std::sin(pose.theta);
+  double hxt = 0, hyt = 0, htt = 0, gx = 0, gy = 0, gt = 0;
+  for_each_match(map, pose, scan, opt_.window,
                  [&](size_t i, double hx, double hy, double, const Point2D& m) {
                    const Point2D& p = scan.hit[i];
                    const double jx = -s * p.x - c * p.y, jy = c * p.x - s * p.y;
                    const double rx = hx - m.x, ry = hy - m.y;
-                   H[0] += 1; H[1] += 0; H[2] += jx;
-                   H[3] += 1; H[4] += jy;
-                   H[5] += jx * jx + jy * jy;
-                   g[0] += rx; g[1] += ry; g[2] += jx * rx + jy * ry;
+                   hxt += jx;
+                   hyt += jy;
+                   htt += jx * jx + jy * jy;
+                   gx += rx;
+                   gy += ry;
+                   gt += jx * rx + jy * ry;
                    ++n;
                  });
-  if (n < 6) return false;
-  // Solve H d = -g by Cholesky of the 3x3 symmetric matrix.
-  const double a = H[0], b = H[1], d = H[2], e = H[3], f = H[4], k = H[5];
-  const double l00 = std::sqrt(a);
-  const double l10 = b / l00, l20 = d / l00;
-  const double t11 = e - l10 * l10;
-  if (t11 <= 0) return false;
-  const double l11 = std::sqrt(t11);
-  const double l21 = (f - l20 * l10) / l11;
-  const double t22 = k - l20 * l20 - l21 * l21;
-  if (t22 <= 1e-9 * k) return false;
-  const double l22 = std::sqrt(t22);
-  const double y0 = -g[0] / l00, y1 = (-g[1] - l10 * y0) / l11,
-               y2 = (-g[2] - l20 * y0 - l21 * y1) / l22;
-  const double x2 = y2 / l22, x1 = (y1 - l21 * x2) / l11,
-               x0 = (y0 - l10 * x1 - l20 * x2) / l00;
-  *pose = Pose2D(pose->x + x0, pose->y + x1, wrap_angle(pose->theta + x2));
+  *H << n, 0, hxt, 0, n, hyt, hxt, hyt, htt;
+  *g << gx, gy, gt;
+  return n;
+}
+
+bool ScanMatcher::gauss_newton_step(const grid::OccupancyGrid& map,
+                                    const ScanPoints& scan, Pose2D* pose) const {
+  Eigen::Matrix3d H;
+  Eigen::Vector3d g;
+  if (normal_equations(map, scan, *pose, &H, &g) < 6) return false;
+  const Eigen::LDLT<Eigen::Matrix3d> ldlt(H);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() ||
+      ldlt.vectorD().minCoeff() <= 1e-9 * H.trace())
+    return false;  // degenerate (e.g. a featureless corridor): keep the pose
+  const Eigen::Vector3d d = ldlt.solve(-g);
+  *pose = Pose2D(pose->x + d.x(), pose->y + d.y(), wrap_angle(pose->theta + d.z()));
   return true;
 }
 

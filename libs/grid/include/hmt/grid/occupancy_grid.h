@@ -84,6 +84,13 @@ class OccupancyGrid {
     return {ctr.x + cell.hx * k, ctr.y + cell.hy * k};
   }
 
+  // The tile at tile coordinates (cell >> kTileBits), or nullptr if never
+  // written. Lets hot loops fetch a tile once for a block of cells.
+  const Tile* tile(int tx, int ty) const { return tile_at(tx, ty); }
+  static const Cell& cell_in(const Tile& t, CellIndex c) {
+    return t.cells[((c.y & kTileMask) << kTileBits) | (c.x & kTileMask)];
+  }
+
   // Writable cell, cloning a shared tile or creating an unknown one.
   Cell& mutable_cell(CellIndex c);
   // Writable tile at tile coordinates (cell >> kTileBits), same rules. Lets a

@@ -9,6 +9,8 @@
 // unmapped or dynamic obstacles.
 #pragma once
 
+#include <Eigen/Core>
+
 #include "hmt/common/config.h"
 #include "hmt/common/pose2d.h"
 #include "hmt/grid/occupancy_grid.h"
@@ -61,6 +63,10 @@ class ScanMatcher {
                    const ScanPoints& scan, int window) const;
   Pose2D hill_climb(const grid::OccupancyGrid& map, const Pose2D& start,
                     const ScanPoints& scan, int window) const;
+  // J^T J and J^T r of the point-to-hit-mean residuals at `pose`; returns
+  // the number of matched beams.
+  int normal_equations(const grid::OccupancyGrid& map, const ScanPoints& scan,
+                       const Pose2D& pose, Eigen::Matrix3d* H, Eigen::Vector3d* g) const;
   // One Gauss-Newton step; false if too few matches to constrain the pose.
   bool gauss_newton_step(const grid::OccupancyGrid& map, const ScanPoints& scan,
                          Pose2D* pose) const;
