@@ -68,7 +68,7 @@ void GridRbpf::maybe_insert(Particle& p, const LaserScan& scan) {
 
 GridRbpf::Lattice GridRbpf::evaluate_lattice(const grid::OccupancyGrid& map,
                                              const Pose2D& from, const Pose2D& u,
-                                             const ScanPoints& pts,
+                                             const ScanPoints& pts, double scale,
                                              const Pose2D& center) const {
   // Target p(z|x,m) p(x|x',u) on a 3x3x3 lattice around `center`. Two
   // temperings of the same evaluations: a mild one shapes the proposal (a
@@ -87,7 +87,7 @@ GridRbpf::Lattice GridRbpf::evaluate_lattice(const grid::OccupancyGrid& map,
       for (int x = -1; x <= 1; ++x, ++j) {
         const Pose2D xj(center.x + x * dl, center.y + y * dl,
                         wrap_angle(center.theta + a * da));
-        const double ll = matcher_.score(map, xj, pts).log_likelihood;
+        const double ll = scale * matcher_.score(map, xj, pts).log_likelihood;
         const double lm = log_norm_motion + motion_.log_density(from, u, xj);
         logq[j] = ll / opt_.proposal_gain + lm;
         logw[j] = ll / opt_.likelihood_gain + lm;
@@ -113,6 +113,7 @@ GridRbpf::Lattice GridRbpf::evaluate_lattice(const grid::OccupancyGrid& map,
 }
 
 void GridRbpf::move_particle(size_t i, const LogStep& step, const ScanPoints& pts,
+                             const ScanPoints& lattice_pts, double lattice_scale,
                              uint64_t stream_seed, bool* fallback) {
   Particle& p = particles_[i];
   Random rng(stream_seed);
@@ -124,7 +125,7 @@ void GridRbpf::move_particle(size_t i, const LogStep& step, const ScanPoints& pt
     MatchScore ms;
     const Pose2D mode = matcher_.optimize(p.map, p.pose + u, pts, &ms);
     if (ms.matched >= opt_.matcher.min_match_ratio * static_cast<double>(n)) {
-      const Lattice lat = evaluate_lattice(p.map, p.pose, u, pts, mode);
+      const Lattice lat = evaluate_lattice(p.map, p.pose, u, lattice_pts, lattice_scale, mode);
       if (lat.ok) {
         const Eigen::Matrix3d L = lat.cov.llt().matrixL();
         const Eigen::Vector3d z(rng.normal(), rng.normal(), rng.normal());
@@ -143,7 +144,7 @@ void GridRbpf::move_particle(size_t i, const LogStep& step, const ScanPoints& pt
     const Pose2D from = p.pose;
     p.pose = motion_.sample(from, u, rng);
     if (n > 0) {
-      const Lattice lat = evaluate_lattice(p.map, from, u, pts, p.pose);
+      const Lattice lat = evaluate_lattice(p.map, from, u, lattice_pts, lattice_scale, p.pose);
       if (lat.ok) {
         p.log_weight += lat.log_eta;
         p.path_log_weight += lat.log_eta;
@@ -164,11 +165,18 @@ void GridRbpf::process(const LogStep& step) {
   const ScanPoints pts =
       prepare_scan(step.scan, opt_.matcher.max_range, opt_.matcher.beam_skip,
                    opt_.resolution);
+  // The lattice evaluates 27 poses per particle: it uses an evenly spread
+  // subset of the beams, its log-likelihoods scaled back to the full count.
+  const ScanPoints lattice_pts = spread_subset(pts, opt_.lattice_beams);
+  const double lattice_scale =
+      lattice_pts.hit.empty() ? 1.0
+                              : static_cast<double>(pts.hit.size()) / lattice_pts.hit.size();
   const uint64_t step_seed = mix(opt_.seed ^ mix(stats_.steps));
   std::vector<char> fell_back(particles_.size(), 0);
   pool_->parallel_for(particles_.size(), [&](size_t i) {
     bool fb = false;
-    move_particle(i, step, pts, mix(step_seed ^ (i * 0x632be59bd9b4e019ULL)), &fb);
+    move_particle(i, step, pts, lattice_pts, lattice_scale,
+                  mix(step_seed ^ (i * 0x632be59bd9b4e019ULL)), &fb);
     fell_back[i] = fb;
   });
   for (char f : fell_back) stats_.odometry_fallbacks += (f != 0);

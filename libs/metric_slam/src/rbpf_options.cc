@@ -15,6 +15,7 @@ void RbpfOptions::load(Config& cfg) {
   proposal_gain = cfg.get_double(s, "proposal_gain", proposal_gain);
   sample_linear = cfg.get_double(s, "sample_linear", sample_linear);
   sample_angular = cfg.get_double(s, "sample_angular", sample_angular);
+  lattice_beams = cfg.get_int(s, "lattice_beams", lattice_beams);
   require(particles >= 1 && particles <= 100000, s, "particles", "in [1, 100000]");
   require(seed_i >= 0, s, "seed", ">= 0");
   seed = static_cast<uint64_t>(seed_i);
@@ -30,6 +31,7 @@ void RbpfOptions::load(Config& cfg) {
   require(proposal_gain >= 1, s, "proposal_gain", ">= 1");
   require(sample_linear > 0, s, "sample_linear", "> 0");
   require(sample_angular > 0, s, "sample_angular", "> 0");
+  require(lattice_beams >= 0, s, "lattice_beams", ">= 0 (0: all beams)");
 
   resolution = cfg.get_double("grid", "resolution", resolution);
   require(resolution >= 0.005 && resolution <= 1.0, "grid", "resolution",

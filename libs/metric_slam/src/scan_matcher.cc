@@ -207,14 +207,7 @@ bool ScanMatcher::gauss_newton_step(const grid::OccupancyGrid& map,
 Pose2D ScanMatcher::optimize(const grid::OccupancyGrid& map, const Pose2D& start,
                              const ScanPoints& scan, MatchScore* best_out) const {
   // Coarse: an evenly spread subset of the beams.
-  ScanPoints coarse;
-  const size_t n = scan.hit.size();
-  const size_t stride =
-      opt_.coarse_beams > 0 ? std::max<size_t>(1, n / static_cast<size_t>(opt_.coarse_beams)) : 1;
-  for (size_t i = 0; i < n; i += stride) {
-    coarse.hit.push_back(scan.hit[i]);
-    coarse.free.push_back(scan.free[i]);
-  }
+  const ScanPoints coarse = spread_subset(scan, opt_.coarse_beams);
   Pose2D best = hill_climb(map, start, coarse, opt_.coarse_window);
   MatchScore best_score = score(map, best, scan);
   // Fine: Gauss-Newton on all beams, kept only while the likelihood rises.

@@ -22,4 +22,16 @@ ScanPoints prepare_scan(const LaserScan& scan, double max_range, int skip,
   return out;
 }
 
+ScanPoints spread_subset(const ScanPoints& pts, int max_points) {
+  const size_t n = pts.hit.size();
+  if (max_points <= 0 || n <= static_cast<size_t>(max_points)) return pts;
+  const size_t stride = (n + max_points - 1) / static_cast<size_t>(max_points);
+  ScanPoints out;
+  for (size_t i = 0; i < n; i += stride) {
+    out.hit.push_back(pts.hit[i]);
+    out.free.push_back(pts.free[i]);
+  }
+  return out;
+}
+
 }  // namespace hmt::metric_slam

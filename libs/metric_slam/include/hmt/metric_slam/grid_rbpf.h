@@ -86,11 +86,14 @@ class GridRbpf {
   };
   // The optimal-proposal target around `center` for a particle moving from
   // `from` by odometry `u` in `map`.
+  // `pts` may be a subset of the scan; its log-likelihoods are multiplied by
+  // `scale` to stand for the whole scan.
   Lattice evaluate_lattice(const grid::OccupancyGrid& map, const Pose2D& from,
-                           const Pose2D& u, const ScanPoints& pts,
+                           const Pose2D& u, const ScanPoints& pts, double scale,
                            const Pose2D& center) const;
   void initialise(const LogStep& step);
   void move_particle(size_t i, const LogStep& step, const ScanPoints& pts,
+                     const ScanPoints& lattice_pts, double lattice_scale,
                      uint64_t stream_seed, bool* fallback);
   void maybe_insert(Particle& p, const LaserScan& scan);
   void resample_if_needed();

@@ -33,6 +33,8 @@ struct RbpfOptions {
   // optimal proposal is evaluated (paper 002 Eq. 6, second step).
   double sample_linear = 0.02;
   double sample_angular = 0.01;
+  // The lattice uses at most this many evenly spread beams (0 = all).
+  int lattice_beams = 60;
 
   double resolution = 0.05;
   grid::InsertionOptions insertion;

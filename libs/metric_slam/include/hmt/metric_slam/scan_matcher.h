@@ -30,7 +30,7 @@ struct MatcherOptions {
   // The hill climbing runs on at most this many evenly spread beams, with
   // a wider search window (a wider basin for bad odometry, at the cost of
   // fewer beams); the result is then refined by Gauss-Newton on every beam.
-  int coarse_beams = 60;
+  int coarse_beams = 40;
   int coarse_window = 2;            // search radius (cells) while hill climbing
   int gauss_newton_iterations = 3;
   double min_match_ratio = 0.2;     // below: matching failed, use odometry

@@ -19,4 +19,8 @@ struct ScanPoints {
 ScanPoints prepare_scan(const LaserScan& scan, double max_range, int skip,
                         double free_step);
 
+// At most `max_points` points spread evenly over the scan (all if 0 or if
+// the scan has no more).
+ScanPoints spread_subset(const ScanPoints& pts, int max_points);
+
 }  // namespace hmt::metric_slam
