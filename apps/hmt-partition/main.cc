@@ -42,11 +42,9 @@ int run(const Args& a) {
   if (!a.keyframe_angle.empty())
     cfg.apply_override("grouping.keyframe_angle=" + a.keyframe_angle);
   const std::string cfg_dir = std::filesystem::path(a.config).parent_path().string();
-  hmt::grouping::PartitionJobOptions opt;
-  // [grouping] is read before the shared job options, which reject every
-  // key no component has read.
-  opt.grouping.load(cfg);
   const hmt::pipeline::JobOptions job = hmt::pipeline::load_job_options(cfg, cfg_dir);
+  hmt::grouping::PartitionJobOptions opt;
+  opt.grouping = job.grouping;
   opt.area = job.area;
   opt.local_maps.resolution = job.rbpf.resolution;
   opt.local_maps.insertion = job.rbpf.insertion;

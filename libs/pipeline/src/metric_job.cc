@@ -37,6 +37,7 @@ JobOptions load_job_options(Config& cfg, const std::string& config_dir) {
   o.output.load(cfg);
   o.rbpf.load(cfg);
   o.area.load(cfg, "area");
+  o.grouping.load(cfg, "grouping");
   cfg.check_all_used();
   return o;
 }

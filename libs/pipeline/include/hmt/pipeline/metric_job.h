@@ -8,6 +8,7 @@
 #include "hmt/common/config.h"
 #include "hmt/common/sensor_data.h"
 #include "hmt/area/area_options.h"
+#include "hmt/grouping/grouping_options.h"
 #include "hmt/metric_slam/rbpf_options.h"
 
 namespace hmt::pipeline {
@@ -30,6 +31,7 @@ struct JobOptions {
   OutputOptions output;
   metric_slam::RbpfOptions rbpf;
   area::AreaOptions area;
+  grouping::GroupingOptions grouping;
 };
 
 // Reads every option of every component from `cfg`, then fails on any key
