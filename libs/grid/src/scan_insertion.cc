@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <vector>
 
 namespace hmt::grid {
 namespace {
@@ -11,11 +13,38 @@ LogOdds scaled_logit(double p) {
   return static_cast<LogOdds>(std::lround(std::log(p / (1.0 - p)) * kLogOddsScale));
 }
 
+// Marks which cells a scan has already updated, over the scan's bounding box
+// (one bit per cell), so that every cell gets at most one update per scan.
+class UpdateMarks {
+ public:
+  void reset(CellIndex lo, CellIndex hi) {
+    x0_ = lo.x;
+    y0_ = lo.y;
+    w_ = static_cast<size_t>(hi.x - lo.x + 1);
+    const size_t n = w_ * static_cast<size_t>(hi.y - lo.y + 1);
+    bits_.assign((n + 63) / 64, 0);
+  }
+  // True the first time a cell is seen.
+  bool first(int x, int y) {
+    const size_t i = static_cast<size_t>(y - y0_) * w_ + static_cast<size_t>(x - x0_);
+    uint64_t& word = bits_[i >> 6];
+    const uint64_t bit = uint64_t{1} << (i & 63);
+    if (word & bit) return false;
+    word |= bit;
+    return true;
+  }
+
+ private:
+  int x0_ = 0, y0_ = 0;
+  size_t w_ = 0;
+  std::vector<uint64_t> bits_;
+};
+
 // Walks the cells of a Bresenham line, fetching each tile once per visit.
 class RayWriter {
  public:
-  RayWriter(OccupancyGrid& g, LogOdds l_free, LogOdds l_clamp)
-      : grid_(g), l_free_(l_free), l_clamp_(l_clamp) {}
+  RayWriter(OccupancyGrid& g, LogOdds l_free, LogOdds l_clamp, UpdateMarks& marks)
+      : grid_(g), l_free_(l_free), l_clamp_(l_clamp), marks_(marks) {}
 
   Cell& cell(int x, int y) {
     const int tx = x >> kTileBits, ty = y >> kTileBits;
@@ -27,15 +56,18 @@ class RayWriter {
     return tile_->cells[((y & kTileMask) << kTileBits) | (x & kTileMask)];
   }
 
-  // Marks free every cell from a (inclusive) to b (exclusive).
+  // Marks free every cell from a (inclusive) to b (exclusive) that this scan
+  // has not updated yet.
   void free_line(CellIndex a, CellIndex b) {
     int x = a.x, y = a.y;
     const int dx = std::abs(b.x - a.x), dy = -std::abs(b.y - a.y);
     const int sx = a.x < b.x ? 1 : -1, sy = a.y < b.y ? 1 : -1;
     int err = dx + dy;
     while (x != b.x || y != b.y) {
-      Cell& c = cell(x, y);
-      c.logodds = static_cast<LogOdds>(std::max<int>(c.logodds + l_free_, -l_clamp_));
+      if (marks_.first(x, y)) {
+        Cell& c = cell(x, y);
+        c.logodds = static_cast<LogOdds>(std::max<int>(c.logodds + l_free_, -l_clamp_));
+      }
       const int e2 = 2 * err;
       if (e2 >= dy) { err += dy; x += sx; }
       if (e2 <= dx) { err += dx; y += sy; }
@@ -45,6 +77,7 @@ class RayWriter {
  private:
   OccupancyGrid& grid_;
   LogOdds l_free_, l_clamp_;
+  UpdateMarks& marks_;
   Tile* tile_ = nullptr;
   int tx_ = 0, ty_ = 0;
 };
@@ -68,11 +101,23 @@ LogOdds InsertionOptions::l_clamp() const { return scaled_logit(p_clamp); }
 
 void insert_scan(OccupancyGrid& grid, const Pose2D& robot_pose,
                  const LaserScan& scan, const InsertionOptions& opt) {
+  // Each cell is updated at most once per scan (as in Cartographer's
+  // update markers): near the sensor hundreds of beams cross the same cells,
+  // and one scan is one observation of them, not hundreds. Hits go first, so
+  // a cell some beam ends in is not also cleared by a neighbouring beam.
   const LogOdds l_occ = opt.l_occupied(), l_clamp = opt.l_clamp();
-  RayWriter ray(grid, opt.l_free(), l_clamp);
   const Pose2D sensor = robot_pose + scan.sensor_pose;
   const CellIndex origin = grid.cell_of(sensor.x, sensor.y);
   const double res = grid.resolution();
+
+  struct Beam {
+    CellIndex end;
+    double ex, ey;
+    bool hit;
+  };
+  std::vector<Beam> beams;
+  beams.reserve(scan.size());
+  CellIndex lo = origin, hi = origin;
   for (size_t i = 0; i < scan.size(); ++i) {
     if (!scan.valid[i]) continue;
     const double r = scan.ranges[i];
@@ -81,21 +126,30 @@ void insert_scan(OccupancyGrid& grid, const Pose2D& robot_pose,
     const double a = sensor.theta + scan.bearing(i);
     const double ex = sensor.x + rr * std::cos(a), ey = sensor.y + rr * std::sin(a);
     const CellIndex end = grid.cell_of(ex, ey);
-    ray.free_line(origin, end);
-    if (!hit) continue;
-    Cell& c = ray.cell(end.x, end.y);
-    c.logodds = static_cast<LogOdds>(std::min<int>(c.logodds + l_occ, l_clamp));
-    // Running mean of the hit position inside the cell (weight capped so the
-    // mean still follows small changes).
-    const Point2D ctr = grid.cell_center(end);
-    const double k = kHitScale / res;
-    const int px = static_cast<int>(std::lround((ex - ctr.x) * k));
-    const int py = static_cast<int>(std::lround((ey - ctr.y) * k));
+    lo = {std::min(lo.x, end.x), std::min(lo.y, end.y)};
+    hi = {std::max(hi.x, end.x), std::max(hi.y, end.y)};
+    beams.push_back({end, ex, ey, hit});
+  }
+  thread_local UpdateMarks marks;
+  marks.reset(lo, hi);
+  RayWriter ray(grid, opt.l_free(), l_clamp, marks);
+  const double k = kHitScale / res;
+  for (const Beam& b : beams) {
+    if (!b.hit) continue;
+    const bool first = marks.first(b.end.x, b.end.y);
+    Cell& c = ray.cell(b.end.x, b.end.y);
+    if (first) c.logodds = static_cast<LogOdds>(std::min<int>(c.logodds + l_occ, l_clamp));
+    // Running mean of the hit positions inside the cell (every hit counts;
+    // the weight is capped so the mean still follows small changes).
+    const Point2D ctr = grid.cell_center(b.end);
+    const int px = static_cast<int>(std::lround((b.ex - ctr.x) * k));
+    const int py = static_cast<int>(std::lround((b.ey - ctr.y) * k));
     const int n = std::min<int>(c.hits + 1, 16);
     c.hx = static_cast<int8_t>(std::clamp(c.hx + (px - c.hx) / n, -127, 127));
     c.hy = static_cast<int8_t>(std::clamp(c.hy + (py - c.hy) / n, -127, 127));
     if (c.hits < 255) ++c.hits;
   }
+  for (const Beam& b : beams) ray.free_line(origin, b.end);
 }
 
 }  // namespace hmt::grid

@@ -155,13 +155,29 @@ void GridRbpf::move_particle(size_t i, const LogStep& step, const ScanPoints& pt
   maybe_insert(p, step.scan);
 }
 
-void GridRbpf::process(const LogStep& step) {
-  last_scan_ = step.scan;
+void GridRbpf::process(const LogStep& input) {
   if (particles_.empty()) {
-    initialise(step);
+    last_scan_ = input.scan;
+    initialise(input);
     ++stats_.steps;
     return;
   }
+  // Filter only once the robot has moved enough since the last update: a
+  // scan from (nearly) the same place adds little, and a robot standing
+  // still must not make the filter resample on nothing. Skipped scans get
+  // the dead-reckoned pose in each particle's path.
+  pending_motion_ = pending_motion_ + input.odometry_increment;
+  ++stats_.steps;
+  if (pending_motion_.norm() < opt_.update_distance &&
+      std::fabs(pending_motion_.theta) < opt_.update_angle) {
+    for (auto& p : particles_) p.path.push_back(p.pose + pending_motion_);
+    ++stats_.skipped_steps;
+    return;
+  }
+  LogStep step = input;
+  step.odometry_increment = pending_motion_;
+  pending_motion_ = Pose2D();
+  last_scan_ = step.scan;
   const ScanPoints pts =
       prepare_scan(step.scan, opt_.matcher.max_range, opt_.matcher.beam_skip,
                    opt_.resolution);
@@ -180,7 +196,6 @@ void GridRbpf::process(const LogStep& step) {
     fell_back[i] = fb;
   });
   for (char f : fell_back) stats_.odometry_fallbacks += (f != 0);
-  ++stats_.steps;
   resample_if_needed();
 }
 
@@ -243,6 +258,7 @@ std::vector<Pose2D> GridRbpf::start_new_area() {
     throw Error(ExitCode::kInternal, "start_new_area() before the first scan");
   std::vector<Pose2D> origins;
   origins.reserve(particles_.size());
+  pending_motion_ = Pose2D();
   grid::OccupancyGrid fresh(opt_.resolution);
   grid::insert_scan(fresh, Pose2D(), last_scan_, opt_.insertion);
   for (auto& p : particles_) {
@@ -262,6 +278,7 @@ void GridRbpf::load_area(const grid::OccupancyGrid& map,
     throw Error(ExitCode::kInternal, "load_area() before the first scan");
   if (poses.size() != 1 && poses.size() != particles_.size())
     throw Error(ExitCode::kInternal, "load_area(): need one pose or one per particle");
+  pending_motion_ = Pose2D();
   for (size_t i = 0; i < particles_.size(); ++i) {
     Particle& p = particles_[i];
     p.map = map;

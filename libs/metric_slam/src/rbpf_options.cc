@@ -9,6 +9,8 @@ void RbpfOptions::load(Config& cfg) {
   threads = cfg.get_int(s, "threads", threads);
   const std::string prop = cfg.get_string(s, "proposal", "optimal");
   resample_threshold = cfg.get_double(s, "resample_threshold", resample_threshold);
+  update_distance = cfg.get_double(s, "update_distance", update_distance);
+  update_angle = cfg.get_double(s, "update_angle", update_angle);
   map_update_distance = cfg.get_double(s, "map_update_distance", map_update_distance);
   map_update_angle = cfg.get_double(s, "map_update_angle", map_update_angle);
   likelihood_gain = cfg.get_double(s, "likelihood_gain", likelihood_gain);
@@ -25,6 +27,8 @@ void RbpfOptions::load(Config& cfg) {
   proposal = prop == "optimal" ? ProposalKind::kOptimal : ProposalKind::kOdometry;
   require(resample_threshold >= 0 && resample_threshold <= 1, s,
           "resample_threshold", "in [0, 1]");
+  require(update_distance >= 0, s, "update_distance", ">= 0");
+  require(update_angle >= 0, s, "update_angle", ">= 0");
   require(map_update_distance >= 0, s, "map_update_distance", ">= 0");
   require(map_update_angle >= 0, s, "map_update_angle", ">= 0");
   require(likelihood_gain >= 1, s, "likelihood_gain", ">= 1");

@@ -92,6 +92,7 @@ JobSummary run_metric_job(const JobOptions& opt, const Log& log,
   j["final_pose"] = {{"x", best.pose.x}, {"y", best.pose.y}, {"theta", best.pose.theta}};
   j["resamplings"] = filter.stats().resamplings;
   j["odometry_fallbacks"] = filter.stats().odometry_fallbacks;
+  j["scans_filtered"] = filter.stats().steps - filter.stats().skipped_steps;
   j["final_ess"] = filter.ess();
   write_text_atomically(out_dir + "/summary.json", j.dump(2) + "\n");
   return sum;

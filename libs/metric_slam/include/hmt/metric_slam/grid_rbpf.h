@@ -42,7 +42,8 @@ struct Particle {
 };
 
 struct RbpfStats {
-  size_t steps = 0;
+  size_t steps = 0;               // scans given to process()
+  size_t skipped_steps = 0;       // of which too little motion to filter
   size_t resamplings = 0;
   size_t odometry_fallbacks = 0;  // particle-steps where matching failed
 };
@@ -52,7 +53,9 @@ class GridRbpf {
   explicit GridRbpf(const RbpfOptions& opt);
 
   // One odometry increment followed by one scan. The first call initialises
-  // every particle at the origin with the scan as its map.
+  // every particle at the origin with the scan as its map. A scan taken
+  // before the robot moved update_distance / update_angle since the last
+  // filtered scan only extends the paths by odometry.
   void process(const LogStep& step);
 
   const std::vector<Particle>& particles() const { return particles_; }
@@ -105,6 +108,7 @@ class GridRbpf {
   std::unique_ptr<WorkerPool> pool_;
   std::vector<Particle> particles_;
   LaserScan last_scan_;
+  Pose2D pending_motion_;  // odometry since the last filtered scan
   RbpfStats stats_;
 };
 

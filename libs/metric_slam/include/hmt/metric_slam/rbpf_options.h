@@ -20,10 +20,14 @@ struct RbpfOptions {
   int threads = 0;  // worker threads; 0 = one per core
   ProposalKind proposal = ProposalKind::kOptimal;
   double resample_threshold = 0.5;  // resample when ESS < this * particles
+  // The filter runs on a scan only once the odometry says the robot moved
+  // this far or turned this much since the last filtered scan.
+  double update_distance = 0.05;
+  double update_angle = 0.05;
   // A particle inserts a scan into its map only after moving this far since
   // its last insertion (both 0: every scan).
-  double map_update_distance = 0.0;
-  double map_update_angle = 0.0;
+  double map_update_distance = 0.2;
+  double map_update_angle = 0.1;
   // Log-likelihoods are divided by this before weighting: beams are not
   // independent, and an untempered product makes the weights collapse.
   double likelihood_gain = 30.0;
