@@ -13,31 +13,43 @@ LogOdds scaled_logit(double p) {
   return static_cast<LogOdds>(std::lround(std::log(p / (1.0 - p)) * kLogOddsScale));
 }
 
-// Marks which cells a scan has already updated, over the scan's bounding box
-// (one bit per cell), so that every cell gets at most one update per scan.
+// Which cells a scan has already updated, over the scan's bounding box: one
+// bit per cell for hits and one for free-space updates, so every cell gets
+// at most one update per scan.
 class UpdateMarks {
  public:
   void reset(CellIndex lo, CellIndex hi) {
     x0_ = lo.x;
     y0_ = lo.y;
     w_ = static_cast<size_t>(hi.x - lo.x + 1);
-    const size_t n = w_ * static_cast<size_t>(hi.y - lo.y + 1);
-    bits_.assign((n + 63) / 64, 0);
+    const size_t words = (w_ * static_cast<size_t>(hi.y - lo.y + 1) + 63) / 64;
+    hit_.assign(words, 0);
+    free_.assign(words, 0);
   }
-  // True the first time a cell is seen.
-  bool first(int x, int y) {
-    const size_t i = static_cast<size_t>(y - y0_) * w_ + static_cast<size_t>(x - x0_);
-    uint64_t& word = bits_[i >> 6];
+  // Each returns true the first time it marks a cell.
+  bool mark_hit(int x, int y) { return mark(hit_, x, y); }
+  bool mark_free(int x, int y) { return mark(free_, x, y); }
+  bool is_hit(int x, int y) const {
+    const size_t i = index(x, y);
+    return (hit_[i >> 6] >> (i & 63)) & 1u;
+  }
+
+ private:
+  size_t index(int x, int y) const {
+    return static_cast<size_t>(y - y0_) * w_ + static_cast<size_t>(x - x0_);
+  }
+  bool mark(std::vector<uint64_t>& bits, int x, int y) {
+    const size_t i = index(x, y);
+    uint64_t& word = bits[i >> 6];
     const uint64_t bit = uint64_t{1} << (i & 63);
     if (word & bit) return false;
     word |= bit;
     return true;
   }
 
- private:
   int x0_ = 0, y0_ = 0;
   size_t w_ = 0;
-  std::vector<uint64_t> bits_;
+  std::vector<uint64_t> hit_, free_;
 };
 
 // Walks the cells of a Bresenham line, fetching each tile once per visit.
@@ -56,18 +68,28 @@ class RayWriter {
     return tile_->cells[((y & kTileMask) << kTileBits) | (x & kTileMask)];
   }
 
-  // Marks free every cell from a (inclusive) to b (exclusive) that this scan
-  // has not updated yet.
+  // Marks free the cells from a (inclusive) to b (exclusive), walking back
+  // from b and stopping at the first cell this scan already updated: all
+  // rays start at the sensor, so once this ray meets an earlier one the rest
+  // of the way to the sensor has been cleared by it (to within a cell; the
+  // few cells that differ are cleared by neighbouring rays or later scans).
+  // Near the sensor, where beams crowd together, this walks each cell about
+  // once per scan instead of once per beam.
   void free_line(CellIndex a, CellIndex b) {
-    int x = a.x, y = a.y;
-    const int dx = std::abs(b.x - a.x), dy = -std::abs(b.y - a.y);
-    const int sx = a.x < b.x ? 1 : -1, sy = a.y < b.y ? 1 : -1;
+    int x = b.x, y = b.y;
+    const int dx = std::abs(a.x - b.x), dy = -std::abs(a.y - b.y);
+    const int sx = b.x < a.x ? 1 : -1, sy = b.y < a.y ? 1 : -1;
     int err = dx + dy;
-    while (x != b.x || y != b.y) {
-      if (marks_.first(x, y)) {
+    bool at_end = true;  // b itself is the hit cell (or the range limit)
+    for (;;) {
+      // Cells another beam ends in keep their hit (and do not stop the walk).
+      if (!at_end && !marks_.is_hit(x, y)) {
+        if (!marks_.mark_free(x, y)) return;
         Cell& c = cell(x, y);
         c.logodds = static_cast<LogOdds>(std::max<int>(c.logodds + l_free_, -l_clamp_));
       }
+      at_end = false;
+      if (x == a.x && y == a.y) return;
       const int e2 = 2 * err;
       if (e2 >= dy) { err += dy; x += sx; }
       if (e2 <= dx) { err += dx; y += sy; }
@@ -136,7 +158,7 @@ void insert_scan(OccupancyGrid& grid, const Pose2D& robot_pose,
   const double k = kHitScale / res;
   for (const Beam& b : beams) {
     if (!b.hit) continue;
-    const bool first = marks.first(b.end.x, b.end.y);
+    const bool first = marks.mark_hit(b.end.x, b.end.y);
     Cell& c = ray.cell(b.end.x, b.end.y);
     if (first) c.logodds = static_cast<LogOdds>(std::min<int>(c.logodds + l_occ, l_clamp));
     // Running mean of the hit positions inside the cell (every hit counts;

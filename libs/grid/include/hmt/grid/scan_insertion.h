@@ -14,7 +14,7 @@ struct InsertionOptions {
   double p_occupied = 0.7;   // inverse sensor model at a hit
   double p_free = 0.4;       // inverse sensor model along a beam
   double p_clamp = 0.97;     // log-odds are clamped to logit(+-p_clamp)
-  double max_range = 30.0;   // beams longer than this mark free space only
+  double max_range = 20.0;   // beams longer than this mark free space only
                              // up to it, with no hit (far hits are noisy)
 
   void load(Config& cfg, const std::string& section = "grid");
