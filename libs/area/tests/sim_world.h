@@ -1,41 +1,20 @@
-// A tiny 2D world of wall segments and a ray-casting range sensor, to make
-// scan sequences with a known layout for the area tests and benchmarks.
+// Scan sequences with a known layout for the area tests and benchmarks, in
+// worlds of wall segments seen by the ray-casting sensor of hmt_sim.
 #pragma once
 
 #include <vector>
 
 #include "hmt/area/keyframe.h"
 #include "hmt/common/sensor_data.h"
+#include "hmt/sim/ray_world.h"
 
 namespace hmt::area::sim {
 
-struct Segment {
-  double x0, y0, x1, y1;
-};
-
-struct World {
-  std::vector<Segment> walls;
-  void wall(double x0, double y0, double x1, double y1) {
-    walls.push_back({x0, y0, x1, y1});
-  }
-  // The outline of the axis-aligned box [x0, x1] x [y0, y1].
-  void box(double x0, double y0, double x1, double y1) {
-    wall(x0, y0, x1, y0);
-    wall(x1, y0, x1, y1);
-    wall(x1, y1, x0, y1);
-    wall(x0, y1, x0, y0);
-  }
-};
-
-struct Sensor {
-  int beams = 360;
-  double fov = 2.0 * M_PI;  // centred on the robot's heading
-  double max_range = 20.0;
-};
-
-// Range scan from `robot` (sensor at the robot origin); beams that hit
-// nothing within max_range are invalid.
-LaserScan raycast(const World& world, const Pose2D& robot, const Sensor& s);
+// The world, the sensor and the ray caster are the shared simulator's.
+using hmt::sim::Segment;
+using hmt::sim::Sensor;
+using hmt::sim::World;
+using hmt::sim::raycast;
 
 // Three 7 m x 6 m rooms in a row along x (x in [0, 21], y in [0, 6]) with
 // 0.3 m thick walls, joined by 0.9 m doors at x = 7 (y in [4.6, 5.5]) and

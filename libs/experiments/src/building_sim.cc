@@ -1,7 +1,6 @@
 #include "hmt/experiments/building_sim.h"
 
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -29,13 +28,6 @@ void vertical_wall(World& w, double x, double y0, double y1) {
 
 }  // namespace
 
-void World::box(double x0, double y0, double x1, double y1) {
-  wall(x0, y0, x1, y0);
-  wall(x1, y0, x1, y1);
-  wall(x1, y1, x0, y1);
-  wall(x0, y1, x0, y0);
-}
-
 std::vector<RangeSensor> standard_sensors(double max_range) {
   return {{"360deg", 2.0 * M_PI, 720, max_range},
           {"180deg", M_PI, 361, max_range},
@@ -45,34 +37,7 @@ std::vector<RangeSensor> standard_sensors(double max_range) {
 LaserScan raycast(const World& world, const Pose2D& robot, const RangeSensor& s) {
   if (s.beams < 2 || !(s.fov > 0.0) || s.fov > 2.0 * M_PI + 1e-9 || !(s.max_range > 0.0))
     throw std::invalid_argument("raycast: bad sensor '" + s.name + "'");
-  LaserScan scan;
-  const bool full_circle = s.fov >= 2.0 * M_PI - 1e-9;
-  scan.angle_increment =
-      static_cast<float>(full_circle ? s.fov / s.beams : s.fov / (s.beams - 1));
-  scan.angle_min = static_cast<float>(-0.5 * s.fov);
-  scan.max_range = static_cast<float>(s.max_range);
-  scan.ranges.assign(s.beams, scan.max_range);
-  scan.valid.assign(s.beams, 0);
-  for (int i = 0; i < s.beams; ++i) {
-    const double a = robot.theta + scan.bearing(i);
-    const double dx = std::cos(a), dy = std::sin(a);
-    double best = std::numeric_limits<double>::infinity();
-    for (const Segment& w : world.walls) {
-      // robot + t d = w0 + u (w1 - w0)
-      const double ex = w.x1 - w.x0, ey = w.y1 - w.y0;
-      const double den = dx * ey - dy * ex;
-      if (std::fabs(den) < 1e-12) continue;
-      const double qx = w.x0 - robot.x, qy = w.y0 - robot.y;
-      const double t = (qx * ey - qy * ex) / den;
-      const double u = (qx * dy - qy * dx) / den;
-      if (t > 1e-9 && u >= 0.0 && u <= 1.0 && t < best) best = t;
-    }
-    if (best < s.max_range) {
-      scan.ranges[i] = static_cast<float>(best);
-      scan.valid[i] = 1;
-    }
-  }
-  return scan;
+  return sim::raycast(world, robot, s.sensor());
 }
 
 World building() {

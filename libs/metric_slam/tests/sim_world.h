@@ -1,19 +1,17 @@
-// A tiny simulated world for tests: walls as line segments, exact ray casting,
-// a robot driven along way-points, noisy odometry.
+// A tiny simulated world for tests: walls as line segments, ray casting by
+// hmt_sim, a robot driven along way-points, noisy odometry.
 #pragma once
 
 #include <cmath>
-#include <limits>
 #include <vector>
 
 #include "hmt/common/random.h"
 #include "hmt/common/sensor_data.h"
+#include "hmt/sim/ray_world.h"
 
 namespace hmt::testing_sim {
 
-struct Segment {
-  double x0, y0, x1, y1;
-};
+using Segment = sim::Segment;
 
 // A 20 x 10 m room with an inner wall and a few boxes (not symmetric, so
 // scan matching is well constrained).
@@ -49,33 +47,19 @@ inline std::vector<Segment> corridor_world(double length = 60.0) {
   return w;
 }
 
+// A scan of `beams` beams over `fov` (< 2 pi) centred on the heading (beam 0
+// on the right), ranges to max_range, each valid range with N(0, sigma) noise
+// from `noise` if given: hmt_sim's ray caster, counting wall crossings at any
+// distance > 0 (the loop of the tests drives along a box's edge).
 inline LaserScan cast_scan(const std::vector<Segment>& world, const Pose2D& pose,
                            int beams, double fov, double max_range, Random* noise,
                            double sigma) {
-  LaserScan s;
-  s.angle_min = static_cast<float>(-fov / 2);
-  s.angle_increment = static_cast<float>(fov / (beams - 1));
-  s.max_range = static_cast<float>(max_range);
-  for (int i = 0; i < beams; ++i) {
-    const double a = pose.theta + s.bearing(i);
-    const double dx = std::cos(a), dy = std::sin(a);
-    double best = std::numeric_limits<double>::infinity();
-    for (const auto& g : world) {
-      const double ex = g.x1 - g.x0, ey = g.y1 - g.y0;
-      const double den = dx * ey - dy * ex;
-      if (std::fabs(den) < 1e-12) continue;
-      const double wx = g.x0 - pose.x, wy = g.y0 - pose.y;
-      const double t = (wx * ey - wy * ex) / den;
-      const double u = (wx * dy - wy * dx) / den;
-      if (t > 0 && u >= 0 && u <= 1) best = std::min(best, t);
-    }
-    const bool ok = best < max_range;
-    double r = ok ? best : max_range;
-    if (ok && noise) r += noise->normal(0, sigma);
-    s.ranges.push_back(static_cast<float>(r));
-    s.valid.push_back(ok ? 1 : 0);
-  }
-  return s;
+  sim::Sensor s;
+  s.beams = beams;
+  s.fov = fov;
+  s.max_range = max_range;
+  s.min_hit = 0.0;
+  return sim::raycast(sim::World{world}, pose, s, noise, sigma);
 }
 
 struct SimRun {

@@ -2,10 +2,8 @@
 // any field of view, and keyframes along a route through it: the simulated
 // data of the field-of-view experiment (000 Sec. 6.2).
 //
-// The world, the ray caster and the route sampler follow the test simulator
-// of the area library (libs/area/tests/sim_world.*), copied here rather than
-// shared because that one is test-only code of another library; the
-// building, the route and the turn-in-place keyframes are new.
+// The world and the ray caster are the shared simulator's (hmt_sim); the
+// building, the route and the turn-in-place keyframes are this experiment's.
 #pragma once
 
 #include <string>
@@ -14,27 +12,20 @@
 #include "hmt/area/keyframe.h"
 #include "hmt/common/pose2d.h"
 #include "hmt/common/sensor_data.h"
+#include "hmt/sim/ray_world.h"
 
 namespace hmt::experiments {
 
-struct Segment {
-  double x0, y0, x1, y1;
-};
-
-struct World {
-  std::vector<Segment> walls;
-  void wall(double x0, double y0, double x1, double y1) {
-    walls.push_back({x0, y0, x1, y1});
-  }
-  // The outline of the axis-aligned box [x0, x1] x [y0, y1].
-  void box(double x0, double y0, double x1, double y1);
-};
+using sim::Segment;
+using sim::World;
 
 struct RangeSensor {
   std::string name;
   double fov = 2.0 * M_PI;  // [rad], centred on the robot's heading
   int beams = 720;
   double max_range = 20.0;  // [m]
+
+  sim::Sensor sensor() const { return {beams, fov, max_range}; }
 };
 
 // The three sensors of 000 Sec. 6.2 with one beam per half degree: a
@@ -43,7 +34,8 @@ struct RangeSensor {
 std::vector<RangeSensor> standard_sensors(double max_range = 20.0);
 
 // Range scan from `robot` (sensor at the robot origin); beams that hit
-// nothing within max_range are invalid.
+// nothing within max_range are invalid (sim::raycast; throws
+// std::invalid_argument naming the sensor if it is not a valid one).
 LaserScan raycast(const World& world, const Pose2D& robot, const RangeSensor& s);
 
 // A building of 40 m x 20 m: an east-west corridor 2.5 m wide (y in
