@@ -32,16 +32,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 AppResult run_partition(const std::string& args, const std::string& work_dir) {
-  const std::string out = work_dir + "/stdout.txt", err = work_dir + "/stderr.txt";
-  const std::string cmd = std::string("cd '") + HMT_SOURCE_DIR + "' && '" +
-                          HMT_PARTITION_BIN + "' " + args + " </dev/null >'" + out +
-                          "' 2>'" + err + "'";
-  const int status = std::system(cmd.c_str());
-  AppResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
+  return run_binary(HMT_PARTITION_BIN, args, work_dir);
 }
 
 json read_json(const std::string& path) {

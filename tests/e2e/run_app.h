@@ -31,10 +31,12 @@ inline std::string temp_dir(const std::string& name) {
   return d.string();
 }
 
-// `args` is appended to the binary path as is (quote paths yourself).
-inline AppResult run_app(const std::string& args, const std::string& work_dir) {
+// Runs `binary` with `args` appended as is (quote paths yourself), from the
+// source folder, with no standard input.
+inline AppResult run_binary(const std::string& binary, const std::string& args,
+                            const std::string& work_dir) {
   const std::string out = work_dir + "/stdout.txt", err = work_dir + "/stderr.txt";
-  const std::string cmd = std::string("cd '") + HMT_SOURCE_DIR + "' && '" + HMT_SLAM_BIN +
+  const std::string cmd = std::string("cd '") + HMT_SOURCE_DIR + "' && '" + binary +
                           "' " + args + " </dev/null >'" + out + "' 2>'" + err + "'";
   const int status = std::system(cmd.c_str());
   AppResult r;
@@ -42,6 +44,11 @@ inline AppResult run_app(const std::string& args, const std::string& work_dir) {
   r.out = slurp(out);
   r.err = slurp(err);
   return r;
+}
+
+// hmt-slam.
+inline AppResult run_app(const std::string& args, const std::string& work_dir) {
+  return run_binary(HMT_SLAM_BIN, args, work_dir);
 }
 
 }  // namespace hmt::e2e
