@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_util.h"
+
 #include <Eigen/Dense>
 #include <cmath>
 #include <stdexcept>
@@ -9,9 +11,10 @@
 namespace hmt::topology {
 namespace {
 
-Eigen::Matrix3d diag(double sx, double sy, double st) {
-  return Eigen::Vector3d(sx * sx, sy * sy, st * st).asDiagonal();
-}
+using testing_util::cov_of;
+using testing_util::diag;
+using testing_util::vec;
+
 
 Eigen::Matrix3d correlated() {
   Eigen::Matrix3d c;
@@ -21,7 +24,6 @@ Eigen::Matrix3d correlated() {
   return c;
 }
 
-Eigen::Vector3d vec(const Pose2D& p) { return {p.x, p.y, p.theta}; }
 
 HmtMap three_areas() {
   HmtMap m;

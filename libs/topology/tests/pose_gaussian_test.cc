@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_util.h"
+
 #include <Eigen/Dense>
 #include <cmath>
 #include <functional>
@@ -11,16 +13,11 @@
 namespace hmt::topology {
 namespace {
 
-Eigen::Matrix3d cov_of(double sx, double sy, double st, double rxy = 0.0,
-                       double rxt = 0.0, double ryt = 0.0) {
-  Eigen::Matrix3d c;
-  c << sx * sx, rxy * sx * sy, rxt * sx * st,  //
-      rxy * sx * sy, sy * sy, ryt * sy * st,   //
-      rxt * sx * st, ryt * sy * st, st * st;
-  return c;
-}
+using testing_util::cov_of;
+using testing_util::diag;
+using testing_util::vec;
 
-Eigen::Vector3d vec(const Pose2D& p) { return {p.x, p.y, p.theta}; }
+
 
 // Sample mean and covariance of poses, angles taken relative to `ref` (so a
 // spread across +-pi is not torn apart).

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_util.h"
+
 #include <Eigen/Dense>
 #include <cmath>
 #include <stdexcept>
@@ -10,20 +12,12 @@
 namespace hmt::topology {
 namespace {
 
-Eigen::Matrix3d diag(double sx, double sy, double st) {
-  return Eigen::Vector3d(sx * sx, sy * sy, st * st).asDiagonal();
-}
+using testing_util::cov_of;
+using testing_util::diag;
+using testing_util::vec;
 
-Eigen::Matrix3d cov_of(double sx, double sy, double st, double rxy, double rxt,
-                       double ryt) {
-  Eigen::Matrix3d c;
-  c << sx * sx, rxy * sx * sy, rxt * sx * st,  //
-      rxy * sx * sy, sy * sy, ryt * sy * st,   //
-      rxt * sx * st, ryt * sy * st, st * st;
-  return c;
-}
 
-Eigen::Vector3d vec(const Pose2D& p) { return {p.x, p.y, p.theta}; }
+
 
 HmtMap areas(int n) {
   HmtMap m;
