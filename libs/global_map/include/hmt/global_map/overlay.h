@@ -1,0 +1,57 @@
+// The topology drawn over a global map image (002 Fig. 7 and 9(d)): arcs as
+// lines between the areas' origins, each origin as a dot labelled with its
+// id, and the 95% confidence ellipse of each origin's position, magnified so
+// that it can be seen at map scale.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "hmt/global_map/global_poses.h"
+#include "hmt/grid/map_export.h"
+#include "hmt/topology/hmt_map.h"
+
+namespace hmt::global_map {
+
+// The 95% quantile of the chi-square distribution with 2 degrees of freedom:
+// a 2D Gaussian puts 95% of its mass inside d^T Sigma^-1 d <= 5.991.
+constexpr double kChi2TwoDof95 = 5.991;
+
+struct OverlayOptions {
+  // Magnification of the ellipses' semi-axes (>= 0; 0 draws none). The
+  // paper's figures magnify them 5 times.
+  double ellipse_scale = 5.0;
+  int origin_radius_px = 3;  // >= 1
+  int line_thickness_px = 1;  // >= 1
+  double font_scale = 0.4;  // > 0 (OpenCV Hershey simplex)
+  bool draw_labels = true;
+  // BGR.
+  cv::Scalar arc_colour{200, 120, 0};
+  cv::Scalar ellipse_colour{0, 160, 0};
+  cv::Scalar origin_colour{0, 0, 220};
+  cv::Scalar label_colour{120, 0, 120};
+};
+
+// Continuous pixel coordinates (column, row) of a map-frame point on the
+// image, integers at pixel centres; row 0 is the top (largest y).
+cv::Point2d pixel_of(const grid::MapImage& base, const Point2D& p);
+
+// A CV_8UC3 copy of `base` (its grey levels in all three channels) with the
+// arcs of `map` whose two ends are in `poses`, then the ellipses, labels and
+// origins of the areas in `poses`, drawn in that order (so an origin's dot is
+// never covered). The ellipse uses the 2x2 position block of the area's
+// covariance: semi-axes ellipse_scale * sqrt(5.991 lambda_i) along its
+// eigenvectors; the root, known exactly, has none. Throws
+// std::invalid_argument for a base that is not a non-empty CV_8UC1 image
+// with a positive resolution, or for bad options.
+cv::Mat draw_topology_overlay(const grid::MapImage& base,
+                              const topology::HmtMap& map,
+                              const GlobalPoses& poses,
+                              const OverlayOptions& options = {});
+
+// Writes any image cv::imencode accepts as PNG, atomically (complete or
+// absent, see hmt/common/files.h). Throws hmt::OutputError on failure,
+// including an empty image.
+void write_color_png(const cv::Mat& image, const std::string& path);
+
+}  // namespace hmt::global_map

@@ -1,0 +1,290 @@
+#include "hmt/global_map/global_poses.h"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/LU>
+#include <Eigen/Sparse>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "hmt/topology/shortest_paths.h"
+
+namespace hmt::global_map {
+namespace {
+
+using topology::Arc;
+using topology::HmtMap;
+using topology::PoseGaussian;
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+using Cholesky = Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>;
+
+// A Gauss-Newton step is a descent direction, so some fraction of it lowers
+// chi2 unless the estimate already sits at a minimum to rounding; halving
+// this many times (down to 1/1024 of the step) tells the two apart.
+constexpr int kMaxStepHalvings = 10;
+
+void require_root(const HmtMap& map, AreaId root, const char* who) {
+  if (!map.has_area(root))
+    throw std::invalid_argument(std::string(who) + ": unknown root area " +
+                                std::to_string(root));
+}
+
+void require_valid(const PoseGraphOptions& options) {
+  if (options.max_iterations < 1)
+    throw std::invalid_argument("optimize_poses: max_iterations must be >= 1");
+  if (!(options.relative_tolerance > 0.0 && options.relative_tolerance < 1.0))
+    throw std::invalid_argument(
+        "optimize_poses: relative_tolerance must be in (0, 1)");
+}
+
+// The residual of one arc and its Jacobians with respect to the poses of
+// its two ends, x_a = (t_a, theta_a) and x_b. With c, s = cos, sin theta_a
+// and d = t_b - t_a, the predicted relative pose is
+//   h = (c d_x + s d_y, -s d_x + c d_y, theta_b - theta_a),
+// so
+//   dh/dx_a = [ -c -s  -s d_x + c d_y ]    dh/dx_b = [  c  s  0 ]
+//             [  s -c  -c d_x - s d_y ]              [ -s  c  0 ]
+//             [  0  0        -1       ]              [  0  0  1 ]
+// (the wrap of the angle has derivative 1 wherever it is defined).
+struct LinearisedArc {
+  Eigen::Vector3d residual;
+  Eigen::Matrix3d d_from;
+  Eigen::Matrix3d d_to;
+};
+
+Eigen::Vector3d residual_of(const Pose2D& from, const Pose2D& to,
+                            const Pose2D& arc_mean) {
+  return topology::difference(to - from, arc_mean);
+}
+
+LinearisedArc linearise(const Pose2D& from, const Pose2D& to,
+                        const Pose2D& arc_mean) {
+  const double c = std::cos(from.theta), s = std::sin(from.theta);
+  const double dx = to.x - from.x, dy = to.y - from.y;
+  LinearisedArc l;
+  l.residual = residual_of(from, to, arc_mean);
+  l.d_from << -c, -s, -s * dx + c * dy,  //
+      s, -c, -c * dx - s * dy,           //
+      0, 0, -1;
+  l.d_to << c, s, 0,  //
+      -s, c, 0,       //
+      0, 0, 1;
+  return l;
+}
+
+// The unknowns of the least-squares problem: every reachable area but the
+// root, ascending by id, three columns each. The root has no column (it is
+// the fixed gauge), marked by -1.
+struct Unknowns {
+  std::vector<AreaId> areas;
+  std::map<AreaId, int> column;  // area -> first column, -1 for the root
+
+  int size() const { return 3 * static_cast<int>(areas.size()); }
+};
+
+Unknowns unknowns_of(const GlobalPoses& poses) {
+  Unknowns u;
+  for (const auto& kv : poses.poses) {
+    if (kv.first == poses.root) {
+      u.column[kv.first] = -1;
+      continue;
+    }
+    u.column[kv.first] = u.size();
+    u.areas.push_back(kv.first);
+  }
+  return u;
+}
+
+// The arcs between reachable areas (both ends reachable or neither, since
+// an arc joins its ends), in the map's (from, to) order.
+std::vector<const Arc*> arcs_within(const HmtMap& map,
+                                    const GlobalPoses& poses) {
+  std::vector<const Arc*> arcs;
+  for (const auto& kv : map.arcs())
+    if (poses.poses.count(kv.first.first) && poses.poses.count(kv.first.second))
+      arcs.push_back(&kv.second);
+  return arcs;
+}
+
+Eigen::Matrix3d information_of(const Arc& arc) {
+  return arc.pose.cov.inverse();
+}
+
+double chi2_of(const std::vector<const Arc*>& arcs, const GlobalPoses& poses) {
+  double sum = 0.0;
+  for (const Arc* arc : arcs) {
+    const Eigen::Vector3d e = arc_residual(*arc, poses);
+    sum += e.dot(information_of(*arc) * e);
+  }
+  return sum;
+}
+
+// The normal equations H dx = -g of chi2 linearised at `poses`:
+// H = sum J^T Omega J and g = sum J^T Omega e over the arcs, with the
+// root's blocks left out.
+struct NormalEquations {
+  SparseMatrix H;
+  Eigen::VectorXd g;
+};
+
+NormalEquations normal_equations(const std::vector<const Arc*>& arcs,
+                                 const GlobalPoses& poses, const Unknowns& u) {
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(arcs.size() * 4 * 9);
+  NormalEquations eq;
+  eq.g = Eigen::VectorXd::Zero(u.size());
+  auto add_block = [&](int row, int col, const Eigen::Matrix3d& block) {
+    if (row < 0 || col < 0) return;  // a block of the fixed root
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        triplets.emplace_back(row + i, col + j, block(i, j));
+  };
+  for (const Arc* arc : arcs) {
+    const LinearisedArc l = linearise(poses.poses.at(arc->from).mean,
+                                      poses.poses.at(arc->to).mean,
+                                      arc->pose.mean);
+    const Eigen::Matrix3d omega = information_of(*arc);
+    const int a = u.column.at(arc->from), b = u.column.at(arc->to);
+    const Eigen::Matrix3d Ja_t_omega = l.d_from.transpose() * omega;
+    const Eigen::Matrix3d Jb_t_omega = l.d_to.transpose() * omega;
+    add_block(a, a, Ja_t_omega * l.d_from);
+    add_block(a, b, Ja_t_omega * l.d_to);
+    add_block(b, a, Jb_t_omega * l.d_from);
+    add_block(b, b, Jb_t_omega * l.d_to);
+    if (a >= 0) eq.g.segment<3>(a) += Ja_t_omega * l.residual;
+    if (b >= 0) eq.g.segment<3>(b) += Jb_t_omega * l.residual;
+  }
+  // The same triplet positions every time, so the pattern (and CHOLMOD's
+  // symbolic analysis of it) is the same in every iteration.
+  eq.H.resize(u.size(), u.size());
+  eq.H.setFromTriplets(triplets.begin(), triplets.end());
+  return eq;
+}
+
+void factorize(Cholesky& cholesky, const SparseMatrix& H) {
+  cholesky.factorize(H);
+  if (cholesky.info() != Eigen::Success)
+    throw std::runtime_error(
+        "optimize_poses: the information matrix is not positive definite");
+}
+
+GlobalPoses moved(const GlobalPoses& poses, const Unknowns& u,
+                  const Eigen::VectorXd& step) {
+  GlobalPoses out = poses;
+  for (const AreaId id : u.areas) {
+    const int k = u.column.at(id);
+    Pose2D& p = out.poses.at(id).mean;
+    p = Pose2D(p.x + step(k), p.y + step(k + 1),
+               wrap_angle(p.theta + step(k + 2)));
+  }
+  return out;
+}
+
+// Takes the Gauss-Newton step, or the largest halving of it that does not
+// raise chi2. Returns false (and leaves `poses` alone) if none does.
+bool take_step(const std::vector<const Arc*>& arcs, const Unknowns& u,
+               const Eigen::VectorXd& step, GlobalPoses* poses,
+               double* chi2_now) {
+  double fraction = 1.0;
+  for (int k = 0; k <= kMaxStepHalvings; ++k, fraction *= 0.5) {
+    GlobalPoses candidate = moved(*poses, u, fraction * step);
+    const double c = chi2_of(arcs, candidate);
+    if (c <= *chi2_now) {
+      *poses = std::move(candidate);
+      *chi2_now = c;
+      return true;
+    }
+  }
+  return false;
+}
+
+// The marginal covariance of every unknown area: the 3x3 diagonal blocks of
+// H^-1, one triangular solve pair per area with the existing factor.
+void set_marginal_covariances(const Cholesky& cholesky, const Unknowns& u,
+                              GlobalPoses* poses) {
+  for (const AreaId id : u.areas) {
+    const int k = u.column.at(id);
+    Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(u.size(), 3);
+    unit.block<3, 3>(k, 0).setIdentity();
+    const Eigen::MatrixXd columns = cholesky.solve(unit);
+    const Eigen::Matrix3d block = columns.block<3, 3>(k, 0);
+    Eigen::Matrix3d& cov = poses->poses.at(id).cov;
+    cov = 0.5 * (block + block.transpose());
+    if (!topology::is_positive_definite(cov))
+      throw std::runtime_error("optimize_poses: the covariance of area " +
+                               std::to_string(id) +
+                               " is not positive definite");
+  }
+}
+
+}  // namespace
+
+GlobalPoses shortest_path_poses(const HmtMap& map, AreaId root) {
+  require_root(map, root, "shortest_path_poses");
+  const topology::PathTree tree = topology::shortest_paths(map, root);
+  GlobalPoses out;
+  out.root = root;
+  for (const AreaId id : map.area_ids()) {
+    const auto it = tree.nodes.find(id);
+    if (it == tree.nodes.end())
+      out.unreachable.push_back(id);
+    else
+      out.poses.emplace(id, it->second.pose);
+  }
+  return out;
+}
+
+GlobalPoses optimize_poses(const HmtMap& map, AreaId root,
+                           const PoseGraphOptions& options,
+                           PoseGraphReport* report) {
+  require_root(map, root, "optimize_poses");
+  require_valid(options);
+  GlobalPoses poses = shortest_path_poses(map, root);
+  const Unknowns u = unknowns_of(poses);
+  const std::vector<const Arc*> arcs = arcs_within(map, poses);
+
+  PoseGraphReport r;
+  double chi2_now = chi2_of(arcs, poses);
+  r.initial_chi2 = chi2_now;
+  if (u.areas.empty()) {  // the root alone: nothing to estimate
+    r.final_chi2 = chi2_now;
+    r.converged = true;
+    if (report) *report = r;
+    return poses;
+  }
+
+  Cholesky cholesky;
+  cholesky.analyzePattern(normal_equations(arcs, poses, u).H);
+  while (r.iterations < options.max_iterations) {
+    const NormalEquations eq = normal_equations(arcs, poses, u);
+    factorize(cholesky, eq.H);
+    const Eigen::VectorXd step = cholesky.solve(-eq.g);
+    ++r.iterations;
+    const double before = chi2_now;
+    if (!take_step(arcs, u, step, &poses, &chi2_now) ||
+        before - chi2_now <= options.relative_tolerance * before) {
+      r.converged = true;
+      break;
+    }
+  }
+  r.final_chi2 = chi2_now;
+
+  // Covariances from the information matrix at the final estimate.
+  factorize(cholesky, normal_equations(arcs, poses, u).H);
+  set_marginal_covariances(cholesky, u, &poses);
+  if (report) *report = r;
+  return poses;
+}
+
+Eigen::Vector3d arc_residual(const Arc& arc, const GlobalPoses& poses) {
+  return residual_of(poses.poses.at(arc.from).mean, poses.poses.at(arc.to).mean,
+                     arc.pose.mean);
+}
+
+double chi2(const HmtMap& map, const GlobalPoses& poses) {
+  return chi2_of(arcs_within(map, poses), poses);
+}
+
+}  // namespace hmt::global_map
