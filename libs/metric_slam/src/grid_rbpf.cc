@@ -14,13 +14,8 @@
 namespace hmt::metric_slam {
 namespace {
 
-// Decorrelates (seed, step, particle) into a stream seed (splitmix64).
-uint64_t mix(uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
+// Decorrelates (seed, step, particle) into a stream seed.
+uint64_t mix(uint64_t x) { return mix_seed(x); }
 
 double log_sum_exp(const std::vector<double>& v) {
   const double m = *std::max_element(v.begin(), v.end());
@@ -39,11 +34,21 @@ int thread_count(int requested) {
 }  // namespace
 
 GridRbpf::GridRbpf(const RbpfOptions& opt)
+    : GridRbpf(opt, std::make_shared<WorkerPool>(thread_count(opt.threads))) {}
+
+GridRbpf::GridRbpf(const RbpfOptions& opt, std::shared_ptr<WorkerPool> pool)
     : opt_(opt),
       matcher_(opt.matcher),
       motion_(opt.motion),
       rng_(opt.seed),
-      pool_(std::make_unique<WorkerPool>(thread_count(opt.threads))) {}
+      pool_(std::move(pool)) {
+  if (!pool_) throw Error(ExitCode::kInternal, "GridRbpf: no worker pool");
+}
+
+void GridRbpf::reseed(uint64_t seed) {
+  opt_.seed = seed;
+  rng_ = Random(seed);
+}
 
 void GridRbpf::initialise(const LogStep& step) {
   Particle p;
@@ -156,6 +161,7 @@ void GridRbpf::move_particle(size_t i, const LogStep& step, const ScanPoints& pt
 }
 
 void GridRbpf::process(const LogStep& input) {
+  last_log_evidence_ = 0.0;
   if (particles_.empty()) {
     last_scan_ = input.scan;
     initialise(input);
@@ -189,6 +195,8 @@ void GridRbpf::process(const LogStep& input) {
                               : static_cast<double>(pts.hit.size()) / lattice_pts.hit.size();
   const uint64_t step_seed = mix(opt_.seed ^ mix(stats_.steps));
   std::vector<char> fell_back(particles_.size(), 0);
+  std::vector<double> before(particles_.size());
+  for (size_t i = 0; i < particles_.size(); ++i) before[i] = particles_[i].log_weight;
   pool_->parallel_for(particles_.size(), [&](size_t i) {
     bool fb = false;
     move_particle(i, step, pts, lattice_pts, lattice_scale,
@@ -196,6 +204,10 @@ void GridRbpf::process(const LogStep& input) {
     fell_back[i] = fb;
   });
   for (char f : fell_back) stats_.odometry_fallbacks += (f != 0);
+  std::vector<double> after(particles_.size());
+  for (size_t i = 0; i < particles_.size(); ++i) after[i] = particles_[i].log_weight;
+  // sum_i w_i exp(delta_i) with w the normalised weights before the step.
+  last_log_evidence_ = log_sum_exp(after) - log_sum_exp(before);
   resample_if_needed();
 }
 
@@ -253,19 +265,29 @@ void GridRbpf::resample_if_needed() {
   ++stats_.resamplings;
 }
 
-std::vector<Pose2D> GridRbpf::start_new_area() {
+std::vector<Pose2D> GridRbpf::start_new_area(const std::vector<SeedScan>& seeds) {
   if (particles_.empty())
     throw Error(ExitCode::kInternal, "start_new_area() before the first scan");
+  for (const SeedScan& s : seeds)
+    if (!s.scan || s.path_index >= particles_[0].path.size())
+      throw Error(ExitCode::kInternal, "start_new_area(): seed scan outside the area's path");
   std::vector<Pose2D> origins;
   origins.reserve(particles_.size());
-  pending_motion_ = Pose2D();
+  // The pending odometry is motion after the last filtered pose, which
+  // becomes the new origin: it is kept, expressed from that origin as before.
   grid::OccupancyGrid fresh(opt_.resolution);
   grid::insert_scan(fresh, Pose2D(), last_scan_, opt_.insertion);
   for (auto& p : particles_) {
     origins.push_back(p.pose);
-    p.pose = Pose2D();
     p.map = fresh;
-    p.path.assign(1, p.pose);
+    if (!seeds.empty()) {
+      // Each particle saw the seed scans from its own poses: its map of the
+      // new area is its own (a few tiles per particle).
+      for (const SeedScan& s : seeds)
+        grid::insert_scan(p.map, p.path[s.path_index] - p.pose, *s.scan, opt_.insertion);
+    }
+    p.pose = Pose2D();
+    p.path.assign(1, p.pose + pending_motion_);
     p.last_insertion = p.pose;
     p.inserted = true;
   }
@@ -278,6 +300,7 @@ void GridRbpf::load_area(const grid::OccupancyGrid& map,
     throw Error(ExitCode::kInternal, "load_area() before the first scan");
   if (poses.size() != 1 && poses.size() != particles_.size())
     throw Error(ExitCode::kInternal, "load_area(): need one pose or one per particle");
+  // The given poses are the robot's poses now, after any pending odometry.
   pending_motion_ = Pose2D();
   for (size_t i = 0; i < particles_.size(); ++i) {
     Particle& p = particles_[i];

@@ -190,6 +190,16 @@ int ScanMatcher::normal_equations(const grid::OccupancyGrid& map,
   return n;
 }
 
+Eigen::Matrix3d ScanMatcher::information(const grid::OccupancyGrid& map,
+                                         const Pose2D& pose, const ScanPoints& scan,
+                                         int* matched) const {
+  Eigen::Matrix3d H;
+  Eigen::Vector3d g;
+  const int n = normal_equations(map, scan, pose, &H, &g);
+  if (matched) *matched = n;
+  return H * (2.0 * inv_2sigma2_);
+}
+
 bool ScanMatcher::gauss_newton_step(const grid::OccupancyGrid& map,
                                     const ScanPoints& scan, Pose2D* pose) const {
   Eigen::Matrix3d H;

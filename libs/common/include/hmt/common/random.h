@@ -41,4 +41,13 @@ class Random {
   double spare_ = 0.0;
 };
 
+// Decorrelates a value into a seed (splitmix64's finaliser): streams derived
+// from (seed, step, index) this way are independent for practical purposes.
+inline uint64_t mix_seed(uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
 }  // namespace hmt

@@ -48,15 +48,35 @@ struct RbpfStats {
   size_t odometry_fallbacks = 0;  // particle-steps where matching failed
 };
 
+// A seed scan for a new area's map: the scan taken at `path_index` of the
+// particles' current-area paths (one path entry per processed step).
+struct SeedScan {
+  size_t path_index = 0;
+  const LaserScan* scan = nullptr;
+};
+
+// Copyable: a copy is an independent filter (maps share tiles until written)
+// that shares the worker pool. Filters sharing a pool must not process()
+// at the same time (the hybrid filter runs its hypotheses one after another).
 class GridRbpf {
  public:
   explicit GridRbpf(const RbpfOptions& opt);
+  GridRbpf(const RbpfOptions& opt, std::shared_ptr<WorkerPool> pool);
 
   // One odometry increment followed by one scan. The first call initialises
   // every particle at the origin with the scan as its map. A scan taken
   // before the robot moved update_distance / update_angle since the last
   // filtered scan only extends the paths by odometry.
   void process(const LogStep& step);
+  // log p(z_t | z^{t-1}, u^t) as this filter estimates it for the last
+  // process() call: the log of the weighted mean of the particles' weight
+  // updates (0 when the scan was skipped). Summed over steps it is the
+  // (tempered) evidence of the data under this filter's map hypothesis,
+  // which is how the hybrid filter weighs topological hypotheses.
+  double last_log_evidence() const { return last_log_evidence_; }
+  // Restarts the random streams from `seed` (a copy that becomes a distinct
+  // hypothesis draws its own numbers).
+  void reseed(uint64_t seed);
 
   const std::vector<Particle>& particles() const { return particles_; }
   // The particle whose whole path explains the data best.
@@ -70,9 +90,11 @@ class GridRbpf {
 
   // --- What the hybrid metric-topological layers use ---
   // Enter a new area: every particle takes its current pose as the origin of
-  // a fresh map (seeded with the last scan). Returns, per particle, the new
-  // origin expressed in the frame of the area being left.
-  std::vector<Pose2D> start_new_area();
+  // a fresh map, seeded with the last scan and the given earlier scans of
+  // the current area (each at the particle's own pose for it, re-expressed
+  // in the new frame). Returns, per particle, the new origin expressed in
+  // the frame of the area being left.
+  std::vector<Pose2D> start_new_area(const std::vector<SeedScan>& seeds = {});
   // Re-enter a known area: every particle gets `map` (shared, not copied) and
   // the given pose in that map's frame (one per particle, or one for all).
   void load_area(const grid::OccupancyGrid& map, const std::vector<Pose2D>& poses);
@@ -105,11 +127,12 @@ class GridRbpf {
   ScanMatcher matcher_;
   MotionModel motion_;
   Random rng_;  // resampling only; per-particle streams are derived per step
-  std::unique_ptr<WorkerPool> pool_;
+  std::shared_ptr<WorkerPool> pool_;
   std::vector<Particle> particles_;
   LaserScan last_scan_;
   Pose2D pending_motion_;  // odometry since the last filtered scan
   RbpfStats stats_;
+  double last_log_evidence_ = 0.0;
 };
 
 }  // namespace hmt::metric_slam

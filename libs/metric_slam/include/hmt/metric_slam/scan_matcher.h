@@ -56,6 +56,11 @@ class ScanMatcher {
   Pose2D optimize(const grid::OccupancyGrid& map, const Pose2D& start,
                   const ScanPoints& scan, MatchScore* best) const;
 
+  // The Gauss-Newton Hessian of -log p(z|x,m) at `pose`: J^T J / sigma^2
+  // over the beams matched there (point-to-hit-mean residuals). It measures
+  // how sharply the scan pins the pose down; `matched` gets the count.
+  Eigen::Matrix3d information(const grid::OccupancyGrid& map, const Pose2D& pose,
+                              const ScanPoints& scan, int* matched = nullptr) const;
   const MatcherOptions& options() const { return opt_; }
 
  private:

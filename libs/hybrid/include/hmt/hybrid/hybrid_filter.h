@@ -1,0 +1,137 @@
+// The HMT-SLAM estimator (002 Sec. III-V) run step by step: a particle
+// filter over the robot's hybrid path whose particles are grouped by
+// topological hypothesis (hypothesis.h).
+//
+// Each step:
+//  1. Metric SLAM: every hypothesis's particles process the odometry and the
+//     scan in the current area's map; the hypothesis's log weight gains the
+//     step's evidence.
+//  2. Area abstraction (AAM): every keyframe_distance / keyframe_angle of
+//     motion of the most probable hypothesis's best particle, the scan joins
+//     the keyframe graph (area::OnlinePartitioner); a good enough normalized
+//     cut says the robot entered a new area.
+//  3. Topological inference (TSBI), on a new-area event, once per
+//     hypothesis: the transition model (tsbi::TransitionModel) gives eta for
+//     an unexplored area and F(gamma) for each known area; every outcome
+//     above the threshold becomes a child hypothesis with weight parent x
+//     probability. "New area": the particles start a fresh map (seeded with
+//     the new area's keyframes) and the arc from the area left is measured
+//     from the particles' origins. "Known area gamma": the particles load
+//     gamma's stored map at poses drawn from the match posterior; the arc
+//     to gamma gets that measurement.
+//  4. Hypotheses under prune_probability are dropped; at most max_hypotheses
+//     are kept.
+//  5. Loop-closure acceptance (TLCA): when one hypothesis dominates (policy
+//     in tlca::TlcaOptions) the others are dropped, its loop closures are
+//     fine-aligned and fused into the arcs, and the shared topological
+//     history is forgotten.
+//
+// Deterministic: hypotheses are processed in id order, each with its own
+// random streams derived from (seed, hypothesis id); particle work is
+// parallel but index-deterministic (metric_slam::WorkerPool). Not
+// synchronised: one thread drives an instance.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "hmt/area/online_partitioner.h"
+#include "hmt/hybrid/hybrid_options.h"
+#include "hmt/hybrid/hypothesis.h"
+#include "hmt/tsbi/transition_model.h"
+
+namespace hmt::hybrid {
+
+// One TSBI evaluation: a hypothesis at a new-area event and what became of it.
+struct TransitionEvent {
+  uint64_t step = 0;
+  double time = 0.0;
+  uint32_t hypothesis = 0;  // the parent
+  double parent_probability = 0.0;
+  topology::AreaId from_area = topology::kNoArea;
+  std::vector<tsbi::Outcome> outcomes;
+  std::vector<uint32_t> children;        // one per outcome
+  std::vector<topology::AreaId> entered;  // area each child entered
+};
+
+// One acceptance by TLCA.
+struct AcceptanceEvent {
+  uint64_t step = 0;
+  uint32_t hypothesis = 0;
+  double probability = 0.0;
+  size_t dropped = 0;  // hypotheses dropped by this acceptance
+  std::vector<tlca::ClosureReport> closures;
+};
+
+struct HybridStats {
+  size_t steps = 0;
+  size_t keyframes = 0;
+  size_t new_area_events = 0;
+  size_t loop_closures_accepted = 0;
+  size_t max_hypotheses_alive = 1;
+  size_t forgotten_path_entries = 0;
+};
+
+class HybridFilter {
+ public:
+  explicit HybridFilter(const HmtOptions& options);
+
+  void process(const LogStep& step);
+
+  const std::vector<Hypothesis>& hypotheses() const { return hyps_; }
+  // Normalised probabilities, in the order of hypotheses().
+  std::vector<double> probabilities() const;
+  // The most probable hypothesis (lowest id on ties).
+  const Hypothesis& best() const;
+  // Eq. 14: probability of each current area.
+  std::map<topology::AreaId, double> position_pmf() const;
+
+  const std::vector<TransitionEvent>& transitions() const { return transitions_; }
+  const std::vector<AcceptanceEvent>& acceptances() const { return acceptances_; }
+  const HybridStats& stats() const { return stats_; }
+  // The topological path accepted and forgotten by TLCA (oldest first);
+  // followed by the surviving hypotheses' own paths.
+  const std::vector<topology::PathEntry>& accepted_path() const { return accepted_path_; }
+
+  // Bytes of the distinct grid tiles held by all particles of all hypotheses
+  // and by the archived area maps.
+  size_t map_memory_bytes() const;
+
+  // The most probable hypothesis's HMT map, its current area's map archived
+  // from its best particle.
+  topology::HmtMap final_map() const;
+  // Its best particle's trajectory: the finished area visits and the current
+  // one, in log order (one pose per step, each in its area's frame).
+  std::vector<TrajectorySegment> final_trajectory() const;
+
+ private:
+  struct KeyframeRecord {
+    uint64_t step = 0;
+    LaserScan scan;
+  };
+  void start(const LogStep& step);
+  void add_keyframe(const LogStep& step);
+  void on_new_area(const area::AreaDecision& decision, const LogStep& step);
+  std::vector<Hypothesis> branch(Hypothesis parent, const area::AreaDecision& decision,
+                                 const LogStep& step);
+  void normalise_and_prune();
+  void accept_if_dominant();
+
+  HmtOptions opt_;
+  std::shared_ptr<metric_slam::WorkerPool> pool_;
+  area::OnlinePartitioner aam_;
+  tsbi::TransitionModel tsbi_;
+  std::vector<Hypothesis> hyps_;  // ascending id
+  uint32_t next_hypothesis_id_ = 0;
+  std::vector<KeyframeRecord> keyframes_;  // by AAM keyframe id
+  bool has_keyframe_ = false;
+  Pose2D last_keyframe_pose_;  // in the AAM frame
+  uint64_t step_ = 0;          // index of the step being processed
+  std::vector<TransitionEvent> transitions_;
+  std::vector<AcceptanceEvent> acceptances_;
+  std::vector<topology::PathEntry> accepted_path_;
+  HybridStats stats_;
+};
+
+}  // namespace hmt::hybrid

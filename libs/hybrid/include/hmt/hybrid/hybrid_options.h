@@ -1,0 +1,41 @@
+// Options of the hybrid (metric-topological) filter, INI section [hmt], and
+// the bundle of every component's options it drives.
+#pragma once
+
+#include <string>
+
+#include "hmt/area/area_options.h"
+#include "hmt/common/config.h"
+#include "hmt/metric_slam/rbpf_options.h"
+#include "hmt/tlca/acceptance.h"
+#include "hmt/tsbi/tsbi_options.h"
+
+namespace hmt::hybrid {
+
+struct HybridOptions {
+  // At most this many topological hypotheses live at once (each runs
+  // [metric_slam] particles); the least probable are dropped beyond it.
+  int max_hypotheses = 4;
+  // Hypotheses less probable than this are dropped.
+  double prune_probability = 1e-3;
+  // A keyframe for the area abstraction every this much motion.
+  double keyframe_distance = 0.5;  // [m]
+  double keyframe_angle = 0.5;     // [rad]
+  // Floors of an arc's covariance when a new area is entered: a constant
+  // and a part proportional to the distance between the two origins (the
+  // particles' spread alone is over-confident after resampling).
+  double arc_std_xy = 0.05;          // [m]
+  double arc_std_theta = 0.02;       // [rad]
+  double arc_std_per_metre = 0.02;   // [m/m] and [rad/m]
+  void load(Config& cfg, const std::string& section = "hmt");
+};
+
+struct HmtOptions {
+  metric_slam::RbpfOptions rbpf;
+  area::AreaOptions area;
+  tsbi::TsbiOptions tsbi;
+  tlca::TlcaOptions tlca;
+  HybridOptions hybrid;
+};
+
+}  // namespace hmt::hybrid

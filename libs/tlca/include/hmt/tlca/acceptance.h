@@ -1,0 +1,73 @@
+// Topological loop-closure acceptance (TLCA, 002 Sec. IV-D and V): when the
+// filter's hypotheses about the topological path are settled enough, part of
+// the structure is accepted as definitively correct. Then
+//  - each loop closure the accepted hypothesis made is fine-aligned: the
+//    local grid of the area the robot left is registered against the grid of
+//    the known area it closed into, and that measurement replaces the coarse
+//    one TSBI put into the arc (fused, Eq. 10, with whatever the arc held
+//    before this crossing);
+//  - the hypotheses' shared history is forgotten (topology::
+//    forget_common_history), so memory does not grow with the path.
+//
+// When is a hypothesis "highly dominant (or unique)"? Two policies:
+//  - kProbability: its probability reaches accept_probability; the others
+//    are dropped.
+//  - kUnique: only when it is the last one left (the others were pruned for
+//    falling under the filter's prune threshold).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hmt/alignment/grid_alignment.h"
+#include "hmt/common/config.h"
+#include "hmt/topology/hmt_map.h"
+
+namespace hmt::tlca {
+
+enum class AcceptancePolicy { kProbability, kUnique };
+
+struct TlcaOptions {
+  AcceptancePolicy policy = AcceptancePolicy::kProbability;
+  double accept_probability = 0.99;
+  bool fine_alignment = true;
+  alignment::AlignmentOptions alignment;
+  // Reads [tlca] (policy = probability | unique, accept_probability,
+  // fine_alignment) and the alignment's own section ([alignment]).
+  void load(Config& cfg, const std::string& section = "tlca");
+};
+
+// The index of the hypothesis to accept among `probabilities` (normalised),
+// or nothing. With one hypothesis it is always accepted.
+std::optional<size_t> dominant(const std::vector<double>& probabilities,
+                               const TlcaOptions& options);
+
+// A loop closure made by TSBI on one hypothesis: the robot left area `from`
+// and was found in the known area `to`.
+struct ClosureRecord {
+  topology::AreaId from = topology::kNoArea;
+  topology::AreaId to = topology::kNoArea;
+  uint64_t step = 0;
+  // The arc between the two before this crossing, if they were adjacent.
+  std::optional<topology::Arc> arc_before;
+  // TSBI's measurement: the pose of `to`'s frame in `from`'s frame.
+  topology::PoseGaussian measurement;
+};
+
+struct ClosureReport {
+  ClosureRecord record;
+  bool aligned = false;        // fine alignment succeeded and was used
+  std::string reason;          // why not, otherwise
+  topology::PoseGaussian used; // the measurement fused into the arc
+  double correction_m = 0.0;   // how far alignment moved `to`'s origin
+  double correction_rad = 0.0;
+};
+
+// Fine-aligns the two areas' archived grids (when both exist and the option
+// is on) and rewrites the arc from..to as arc_before (+) the aligned
+// measurement (or TSBI's, when alignment failed).
+ClosureReport accept_closure(topology::HmtMap& map, const ClosureRecord& closure,
+                             const TlcaOptions& options);
+
+}  // namespace hmt::tlca

@@ -1,0 +1,122 @@
+// The topological transition model of HMT-SLAM (002 Sec. IV-A), evaluated
+// when the area abstraction says the robot entered a new area, once for each
+// group of particles that shares a topological path (a hypothesis).
+//
+// Outcomes: "an unexplored area", with the constant eta, and "the known area
+// gamma again" (a loop closure) for every area other than the current one,
+// with
+//     F(gamma) = E_{x ~ prior_gamma} [ p(z | x, m_gamma) / p(z | nothing) ]
+// the expected likelihood of the latest observations z in gamma's stored map
+// over the prior of the robot pose in gamma's frame. The prior comes from the
+// arcs: the robot pose in the current area c composed with the Gaussians along
+// the Dijkstra path from gamma to c (Eq. 15, topology/shortest_paths.h).
+// The probabilities are eta and the F(gamma), normalised.
+//
+// How F is computed. p(z|x,m) is the likelihood field model the metric filter
+// weighs its particles with (metric_slam::ScanMatcher, tempered by the same
+// likelihood_gain, so the outcome probabilities and the later evidence live
+// on one scale). Dividing by p(z | nothing) -- every point at the field's
+// truncation distance -- makes the integrand 1 where the map explains
+// nothing. The modes of the integrand are found by grid matching from a set
+// of starts spread over the prior (the 3 principal axes at -k, 0, +k standard
+// deviations); around each mode x* the log-likelihood is taken quadratic,
+// with the scan matcher's Gauss-Newton information H (Laplace), and the
+// Gaussian integral is closed:
+//   int exp(l(x) - l0) N(x; mu, S) dx
+//     ~ exp(l(x*) - l0) |I + H S|^-1/2 exp(-1/2 e^T H (I + S H)^-1 e),
+//   e = x* - mu,
+// which stays finite when H is singular (a corridor leaves the pose free
+// along it; then the prior alone decides there). The factor |I + H S|^-1/2
+// is the Occam factor: a broad prior (a long loop) needs a better match. F
+// sums the distinct modes that explain at least min_match_ratio of the points
+// and lie inside the prior's gate; areas with none are not candidates. When
+// the prior is much wider than the matcher's basin (after a long loop), the
+// starts also include the best poses of a lattice search over the gate.
+//
+// The area check. Areas overlap: what the robot sees just after leaving an
+// area is still partly in that area's map, and in its predecessor's. The
+// area abstraction has just said the latest observations form an area of
+// their own; a known area is therefore only a candidate if, placed at the
+// mode, those observations would not be cut off from the area's keyframes
+// by the same criterion (Ncut({latest}, {area}) >= tau, with the same SSO).
+// A true return passes (the latest scans overlap the area's as much as its
+// own do); a neighbour seen across the border does not.
+#pragma once
+
+#include <vector>
+
+#include "hmt/area/area_options.h"
+#include "hmt/metric_slam/scan_matcher.h"
+#include "hmt/metric_slam/scan_points.h"
+#include "hmt/topology/hmt_map.h"
+#include "hmt/topology/pose_gaussian.h"
+#include "hmt/tsbi/observations.h"
+#include "hmt/tsbi/tsbi_options.h"
+
+namespace hmt::tsbi {
+
+struct Outcome {
+  topology::AreaId area = topology::kNoArea;  // kNoArea: an unexplored area
+  double log_f = 0.0;        // log eta, or log F(gamma)
+  double probability = 0.0;  // normalised over the outcomes returned
+  // Loop closures only:
+  topology::PoseGaussian prior;  // robot pose in the area's frame, from the arcs
+  topology::PoseGaussian robot;  // the best mode, with the Laplace covariance
+  double match_ratio = 0.0;      // points explained at the best mode
+  int modes = 0;                 // distinct modes that entered F
+  bool is_new() const { return area == topology::kNoArea; }
+};
+
+// F(gamma) of one area map for a given prior. Returns false (no candidate)
+// when no mode passes the gates.
+struct ExpectedLikelihood {
+  bool candidate = false;
+  double log_f = 0.0;
+  topology::PoseGaussian robot;
+  double match_ratio = 0.0;
+  int modes = 0;
+};
+
+class TransitionModel {
+ public:
+  // `likelihood_gain` divides log-likelihoods, as in the metric filter;
+  // `area` gives the SSO and tau of the area check.
+  TransitionModel(const TsbiOptions& options,
+                  const metric_slam::MatcherOptions& matcher,
+                  double likelihood_gain, const area::AreaOptions& area);
+
+  // The outcomes for a hypothesis whose map is `map`, whose robot is in area
+  // `current` at `robot` (in that area's frame) and has just made the
+  // observations `obs` (points in the robot frame). The new-area outcome
+  // comes first, known areas follow in ascending id. Outcomes below
+  // min_probability are dropped (the new-area one too, when a known area
+  // leaves it less) and the rest renormalised.
+  std::vector<Outcome> evaluate(const topology::HmtMap& map,
+                                topology::AreaId current,
+                                const topology::PoseGaussian& robot,
+                                const Observations& obs) const;
+
+  ExpectedLikelihood expected_likelihood(const grid::OccupancyGrid& map,
+                                         const topology::PoseGaussian& prior,
+                                         const Observations& obs) const;
+
+  const TsbiOptions& options() const { return opt_; }
+
+ private:
+  // The best-scoring poses of a lattice over the prior's gate.
+  std::vector<Pose2D> wide_search(const grid::OccupancyGrid& map,
+                                  const topology::PoseGaussian& prior,
+                                  const metric_slam::ScanPoints& obs) const;
+  // The area check of TsbiOptions::area_check, with the robot at `robot` in
+  // the area's frame.
+  bool same_area(const topology::Area& area, const Pose2D& robot,
+                 const Observations& obs) const;
+
+  TsbiOptions opt_;
+  metric_slam::ScanMatcher matcher_;
+  metric_slam::ScanMatcher wide_;  // wider window, for the lattice search
+  double gain_;
+  area::AreaOptions area_;
+};
+
+}  // namespace hmt::tsbi

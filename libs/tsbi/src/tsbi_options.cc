@@ -1,0 +1,44 @@
+#include "hmt/tsbi/tsbi_options.h"
+
+#include <cmath>
+
+namespace hmt::tsbi {
+
+void TsbiOptions::load(Config& cfg, const std::string& s) {
+  log_eta = cfg.get_double(s, "log_eta", log_eta);
+  min_match_ratio = cfg.get_double(s, "min_match_ratio", min_match_ratio);
+  gate = cfg.get_double(s, "gate", gate);
+  max_points = cfg.get_int(s, "max_points", max_points);
+  start_sigmas = cfg.get_double(s, "start_sigmas", start_sigmas);
+  prior_std_xy = cfg.get_double(s, "prior_std_xy", prior_std_xy);
+  prior_std_theta = cfg.get_double(s, "prior_std_theta", prior_std_theta);
+  mode_merge_distance = cfg.get_double(s, "mode_merge_distance", mode_merge_distance);
+  mode_merge_angle = cfg.get_double(s, "mode_merge_angle", mode_merge_angle);
+  min_probability = cfg.get_double(s, "min_probability", min_probability);
+  area_check = cfg.get_bool(s, "area_check", area_check);
+  area_check_keyframes = cfg.get_int(s, "area_check_keyframes", area_check_keyframes);
+  search_step_xy = cfg.get_double(s, "search_step_xy", search_step_xy);
+  search_step_theta = cfg.get_double(s, "search_step_theta", search_step_theta);
+  search_points = cfg.get_int(s, "search_points", search_points);
+  search_max_poses = cfg.get_int(s, "search_max_poses", search_max_poses);
+  search_modes = cfg.get_int(s, "search_modes", search_modes);
+  require(area_check_keyframes >= 1, s, "area_check_keyframes", ">= 1");
+  require(search_step_xy > 0, s, "search_step_xy", "> 0");
+  require(search_step_theta > 0, s, "search_step_theta", "> 0");
+  require(search_points >= 10, s, "search_points", ">= 10");
+  require(search_max_poses >= 1000, s, "search_max_poses", ">= 1000");
+  require(search_modes >= 1 && search_modes <= 100, s, "search_modes", "in [1, 100]");
+  require(std::isfinite(log_eta), s, "log_eta", "finite");
+  require(min_match_ratio > 0 && min_match_ratio <= 1, s, "min_match_ratio", "in (0, 1]");
+  require(gate > 0, s, "gate", "> 0");
+  require(max_points >= 10, s, "max_points", ">= 10");
+  require(start_sigmas >= 0 && start_sigmas <= 5, s, "start_sigmas", "in [0, 5]");
+  require(prior_std_xy > 0, s, "prior_std_xy", "> 0");
+  require(prior_std_theta > 0, s, "prior_std_theta", "> 0");
+  require(mode_merge_distance > 0, s, "mode_merge_distance", "> 0");
+  require(mode_merge_angle > 0, s, "mode_merge_angle", "> 0");
+  require(min_probability >= 0 && min_probability < 0.5, s, "min_probability",
+          "in [0, 0.5)");
+}
+
+}  // namespace hmt::tsbi
