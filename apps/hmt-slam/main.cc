@@ -12,13 +12,16 @@
 #include "hmt/common/error.h"
 #include "hmt/io/log_reader.h"
 #include "hmt/io/rawlog.h"
+#include "hmt/pipeline/hmt_job.h"
 #include "hmt/pipeline/metric_job.h"
 
 namespace {
 
+// `hybrid`: the HMT-SLAM job (run); otherwise the metric RBPF over the whole
+// log as one map (metric), the global-RBPF baseline.
 int run(const std::string& config_path, const std::string& input,
         const std::string& out_dir, const std::vector<std::string>& sets,
-        bool quiet) {
+        bool quiet, bool hybrid) {
   hmt::Config cfg = hmt::Config::from_file(config_path);
   for (const auto& s : sets) cfg.apply_override(s);
   const std::string cfg_dir = std::filesystem::path(config_path).parent_path().string();
@@ -30,6 +33,18 @@ int run(const std::string& config_path, const std::string& input,
   const hmt::Log log = hmt::io::read_log(opt.input.log);
   std::fprintf(stderr, "hmt-slam: %zu scans; %d particles\n", log.steps.size(),
                opt.rbpf.particles);
+  if (hybrid) {
+    const auto sum = hmt::pipeline::run_hmt_job(opt, log, cfg, out_dir, !quiet);
+    std::printf("processed %zu scans in %.2f s (peak memory %.1f MB)\n", sum.scans,
+                sum.wall_time_s, sum.peak_rss_bytes / (1024.0 * 1024.0));
+    std::printf("areas: %zu, arcs: %zu, loop closures accepted: %zu\n", sum.areas, sum.arcs,
+                sum.loop_closures);
+    std::printf("final pose (global): x=%.3f y=%.3f theta=%.4f\n", sum.final_pose.x,
+                sum.final_pose.y, sum.final_pose.theta);
+    if (!sum.map_png.empty()) std::printf("map image: %s\n", sum.map_png.c_str());
+    std::printf("outputs in: %s\n", out_dir.c_str());
+    return 0;
+  }
   const auto sum = hmt::pipeline::run_metric_job(opt, log, cfg, out_dir, !quiet);
   std::printf("processed %zu scans in %.2f s (peak memory %.1f MB)\n", sum.scans,
               sum.wall_time_s, sum.peak_rss_bytes / (1024.0 * 1024.0));
@@ -64,12 +79,17 @@ int main(int argc, char** argv) {
   std::string config, input, out = "out";
   std::vector<std::string> sets;
   bool quiet = false;
-  auto* run_cmd = app.add_subcommand("run", "process a whole log and write the map");
-  run_cmd->add_option("--config,-c", config, "INI configuration file")->required();
-  run_cmd->add_option("--input,-i", input, "log (.rawlog, .log, .log.gz); overrides [input] log");
-  run_cmd->add_option("--out,-o", out, "output folder")->capture_default_str();
-  run_cmd->add_option("--set", sets, "override a key: SECTION.key=value (repeatable)");
-  run_cmd->add_flag("--quiet,-q", quiet, "no progress output");
+  auto* run_cmd = app.add_subcommand(
+      "run", "HMT-SLAM on a whole log: global map, topology, trajectory, PMF");
+  auto* metric_cmd = app.add_subcommand(
+      "metric", "the metric RBPF alone over the whole log as one map (baseline)");
+  for (CLI::App* cmd : {run_cmd, metric_cmd}) {
+    cmd->add_option("--config,-c", config, "INI configuration file")->required();
+    cmd->add_option("--input,-i", input, "log (.rawlog, .log, .log.gz); overrides [input] log");
+    cmd->add_option("--out,-o", out, "output folder")->capture_default_str();
+    cmd->add_option("--set", sets, "override a key: SECTION.key=value (repeatable)");
+    cmd->add_flag("--quiet,-q", quiet, "no progress output");
+  }
 
   std::string conv_in, conv_out, format = "sf";
   auto* conv_cmd = app.add_subcommand("convert", "convert a log (e.g. CARMEN) into an MRPT rawlog");
@@ -85,7 +105,8 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : static_cast<int>(hmt::ExitCode::kUsage);
   }
   try {
-    if (*run_cmd) return run(config, input, out, sets, quiet);
+    if (*run_cmd) return run(config, input, out, sets, quiet, true);
+    if (*metric_cmd) return run(config, input, out, sets, quiet, false);
     if (*conv_cmd) return convert(conv_in, conv_out, format);
   } catch (const hmt::Error& e) {
     std::fprintf(stderr, "hmt-slam: error: %s\n", e.what());

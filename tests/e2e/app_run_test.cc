@@ -9,6 +9,7 @@
 
 #include "hmt/common/pose2d.h"
 #include "hmt/io/tum.h"
+#include "loop_closure.h"
 #include "run_app.h"
 
 namespace hmt::e2e {
@@ -49,6 +50,33 @@ TEST(AppRun, MalagaOneLoopMatchesIndependentReference) {
       << "final pose " << got.x << " " << got.y << " " << got.theta;
   EXPECT_LT(std::fabs(wrap_angle(got.theta - ref.theta)), 0.03);
   EXPECT_NEAR(summary["final_pose"]["x"].get<double>(), got.x, 1e-5);
+
+  // The HMT outputs, and the loop closed by inference when the robot comes
+  // back to its start.
+  for (const char* f : {"map_topology.png", "hmt_map.bin", "topology.json", "topology.dot",
+                        "topological_pmf.csv", "tsbi_events.csv", "memory.csv",
+                        "areas/area_1.png"})
+    EXPECT_TRUE(fs::exists(dir + "/out/" + f)) << f;
+  expect_loop_closed_into_area_1(dir + "/out", 3);
+}
+
+TEST(AppRun, EdmontonClosesItsLoop) {
+  const std::string dir = temp_dir("edmonton_loop");
+  const AppResult r = run_app("run --config config/edmonton.ini --quiet --out '" + dir + "/out'", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The first loop returns to the start through area 2 alone.
+  expect_loop_closed_into_area_1(dir + "/out", 2);
+}
+
+TEST(AppRun, MetricBaselineMatchesIndependentReference) {
+  const std::string dir = temp_dir("malaga_metric");
+  const AppResult r =
+      run_app("metric --config config/default.ini --quiet --out '" + dir + "/out'", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto traj = io::read_tum(dir + "/out/trajectory.tum");
+  ASSERT_EQ(traj.size(), 225u);
+  const Pose2D ref = reference_final_pose(), got = traj.back().pose;
+  EXPECT_LT(std::hypot(got.x - ref.x, got.y - ref.y), 0.3);
 }
 
 TEST(AppRun, SameSeedSameBytesWhateverTheThreads) {

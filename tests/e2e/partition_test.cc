@@ -345,7 +345,7 @@ TEST(Partition, TumTrajectoryOfTheOdometryGivesTheSameGroups) {
 TEST(Partition, EdmontonWithReferencePoses) {
   const std::string dir = temp_dir("partition_edmonton");
   const AppResult r = run_partition(
-      "--config config/edmonton.ini --quiet --poses datasets/edmonton.reference.txt.gz --out '" +
+      "--config config/edmonton.ini --set area.tau=1 --quiet --poses datasets/edmonton.reference.txt.gz --out '" +
           dir + "/out'",
       dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -175,23 +175,31 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
   parent.trajectory.push_back(std::move(seg));
   const Pose2D aam_now = parent.aam_from_area + now;
 
+  // Outcomes too improbable to follow get no child; the others share the
+  // parent's weight in proportion.
+  const std::vector<size_t> follow = tsbi::probable_outcomes(ev.outcomes, opt_.tsbi.min_probability);
+  double followed = 0.0;
+  for (size_t k : follow) followed += ev.outcomes[k].probability;
+  ev.children.assign(ev.outcomes.size(), kNoChild);
+  ev.entered.assign(ev.outcomes.size(), topology::kNoArea);
   std::vector<Hypothesis> children;
-  for (size_t k = 0; k < ev.outcomes.size(); ++k) {
+  for (size_t f = 0; f < follow.size(); ++f) {
+    const size_t k = follow[f];
     const tsbi::Outcome& o = ev.outcomes[k];
     // The last outcome takes the parent itself; the others copy it (maps and
     // area tables are shared copy-on-write).
-    Hypothesis child = k + 1 == ev.outcomes.size() ? std::move(parent) : parent;
+    Hypothesis child = f + 1 == follow.size() ? std::move(parent) : parent;
     child.id = next_hypothesis_id_++;
     child.filter.reseed(mix_seed(opt_.rbpf.seed ^ mix_seed(child.id)));
-    child.topo.log_weight += std::log(o.probability);
+    child.topo.log_weight += std::log(o.probability / followed);
     child.area_start_step = step_;
     AreaId entered;
     if (o.is_new()) {
-      const std::vector<Pose2D> origins = child.filter.start_new_area(seeds);
+      const std::vector<Pose2D> origins = child.filter.start_new_area(seeds, best);
       PoseGaussian arc(origins[best], spread(origins, w, origins[best]));
       const double len = origins[best].norm();
-      const double sxy = opt_.hybrid.arc_std_xy + opt_.hybrid.arc_std_per_metre * len;
-      const double sth = opt_.hybrid.arc_std_theta + opt_.hybrid.arc_std_per_metre * len;
+      const double sxy = opt_.hybrid.arc_std_xy + opt_.hybrid.arc_std_xy_per_metre * len;
+      const double sth = opt_.hybrid.arc_std_theta + opt_.hybrid.arc_std_theta_per_metre * len;
       arc.cov.diagonal() += Eigen::Vector3d(sxy * sxy, sxy * sxy, sth * sth);
       entered = child.map.next_area_id();
       topology::ReferenceFrame frame;
@@ -226,8 +234,8 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
       child.aam_from_area = aam_now + o.robot.mean.inverse();
     }
     topology::enter_area(child.topo, entered, step_);
-    ev.children.push_back(child.id);
-    ev.entered.push_back(entered);
+    ev.children[k] = child.id;
+    ev.entered[k] = entered;
     children.push_back(std::move(child));
   }
   transitions_.push_back(std::move(ev));

@@ -9,7 +9,9 @@ void HybridOptions::load(Config& cfg, const std::string& s) {
   keyframe_angle = cfg.get_double(s, "keyframe_angle", keyframe_angle);
   arc_std_xy = cfg.get_double(s, "arc_std_xy", arc_std_xy);
   arc_std_theta = cfg.get_double(s, "arc_std_theta", arc_std_theta);
-  arc_std_per_metre = cfg.get_double(s, "arc_std_per_metre", arc_std_per_metre);
+  arc_std_xy_per_metre = cfg.get_double(s, "arc_std_xy_per_metre", arc_std_xy_per_metre);
+  arc_std_theta_per_metre =
+      cfg.get_double(s, "arc_std_theta_per_metre", arc_std_theta_per_metre);
   require(max_hypotheses >= 1 && max_hypotheses <= 64, s, "max_hypotheses", "in [1, 64]");
   require(prune_probability >= 0 && prune_probability < 0.5, s, "prune_probability",
           "in [0, 0.5)");
@@ -17,7 +19,8 @@ void HybridOptions::load(Config& cfg, const std::string& s) {
   require(keyframe_angle > 0, s, "keyframe_angle", "> 0");
   require(arc_std_xy > 0, s, "arc_std_xy", "> 0");
   require(arc_std_theta > 0, s, "arc_std_theta", "> 0");
-  require(arc_std_per_metre >= 0, s, "arc_std_per_metre", ">= 0");
+  require(arc_std_xy_per_metre >= 0, s, "arc_std_xy_per_metre", ">= 0");
+  require(arc_std_theta_per_metre >= 0, s, "arc_std_theta_per_metre", ">= 0");
 }
 
 }  // namespace hmt::hybrid

@@ -265,27 +265,27 @@ void GridRbpf::resample_if_needed() {
   ++stats_.resamplings;
 }
 
-std::vector<Pose2D> GridRbpf::start_new_area(const std::vector<SeedScan>& seeds) {
+std::vector<Pose2D> GridRbpf::start_new_area(const std::vector<SeedScan>& seeds,
+                                             size_t seed_particle) {
   if (particles_.empty())
     throw Error(ExitCode::kInternal, "start_new_area() before the first scan");
+  if (seed_particle >= particles_.size())
+    throw Error(ExitCode::kInternal, "start_new_area(): no such particle");
+  const Particle& sp = particles_[seed_particle];
   for (const SeedScan& s : seeds)
-    if (!s.scan || s.path_index >= particles_[0].path.size())
+    if (!s.scan || s.path_index >= sp.path.size())
       throw Error(ExitCode::kInternal, "start_new_area(): seed scan outside the area's path");
-  std::vector<Pose2D> origins;
-  origins.reserve(particles_.size());
   // The pending odometry is motion after the last filtered pose, which
   // becomes the new origin: it is kept, expressed from that origin as before.
   grid::OccupancyGrid fresh(opt_.resolution);
+  for (const SeedScan& s : seeds)
+    grid::insert_scan(fresh, sp.path[s.path_index] - sp.pose, *s.scan, opt_.insertion);
   grid::insert_scan(fresh, Pose2D(), last_scan_, opt_.insertion);
+  std::vector<Pose2D> origins;
+  origins.reserve(particles_.size());
   for (auto& p : particles_) {
     origins.push_back(p.pose);
     p.map = fresh;
-    if (!seeds.empty()) {
-      // Each particle saw the seed scans from its own poses: its map of the
-      // new area is its own (a few tiles per particle).
-      for (const SeedScan& s : seeds)
-        grid::insert_scan(p.map, p.path[s.path_index] - p.pose, *s.scan, opt_.insertion);
-    }
     p.pose = Pose2D();
     p.path.assign(1, p.pose + pending_motion_);
     p.last_insertion = p.pose;

@@ -38,6 +38,9 @@ JobOptions load_job_options(Config& cfg, const std::string& config_dir) {
   o.rbpf.load(cfg);
   o.area.load(cfg, "area");
   o.grouping.load(cfg, "grouping");
+  o.tsbi.load(cfg, "tsbi");
+  o.tlca.load(cfg, "tlca");
+  o.hybrid.load(cfg, "hmt");
   cfg.check_all_used();
   return o;
 }

@@ -169,7 +169,7 @@ ExpectedLikelihood TransitionModel::expected_likelihood(
   std::vector<Pose2D> starts = match_starts(prior, opt_.start_sigmas);
   // A prior much wider than the matcher's basin (a long loop) is searched
   // on a lattice first.
-  if (prior.cov(0, 0) + prior.cov(1, 1) > 0.5 * 0.5 || prior.cov(2, 2) > 0.1 * 0.1) {
+  if (std::max(prior.cov(0, 0), prior.cov(1, 1)) > 0.3 * 0.3 || prior.cov(2, 2) > 0.1 * 0.1) {
     const std::vector<Pose2D> wide = wide_search(map, prior, obs);
     starts.insert(starts.begin() + 1, wide.begin(), wide.end());
   }
@@ -220,6 +220,9 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
   outcomes[0].log_f = opt_.log_eta;
   // Where every other area's frame lies, seen from the current area.
   const topology::PathTree tree = topology::shortest_paths(map, current);
+  // How far the observations reach from the robot.
+  double reach_ = 0.0;
+  for (const Point2D& p : obs.points.hit) reach_ = std::max(reach_, std::hypot(p.x, p.y));
   for (AreaId id : map.area_ids()) {
     if (id == current || !tree.reaches(id)) continue;
     const auto& area_map = map.area(id).map;
@@ -228,6 +231,18 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
     o.area = id;
     // The robot in gamma's frame: (-)Delta_{c,gamma} (+) robot.
     o.prior = topology::relative(robot, tree.pose_of(id));
+    // Cheap reach test first: can observations from anywhere in the prior's
+    // gate land on the area's map at all?
+    grid::CellIndex lo, hi;
+    if (!area_map->bounds(&lo, &hi)) continue;
+    const double res = area_map->resolution();
+    const double reach = reach_ + std::sqrt(opt_.gate * std::max(o.prior.cov(0, 0) +
+                                                                 opt_.prior_std_xy * opt_.prior_std_xy,
+                                                                 o.prior.cov(1, 1) +
+                                                                 opt_.prior_std_xy * opt_.prior_std_xy));
+    const double dx = std::max({lo.x * res - o.prior.mean.x, 0.0, o.prior.mean.x - (hi.x + 1) * res});
+    const double dy = std::max({lo.y * res - o.prior.mean.y, 0.0, o.prior.mean.y - (hi.y + 1) * res});
+    if (std::hypot(dx, dy) > reach) continue;
     const ExpectedLikelihood f = expected_likelihood(*area_map, o.prior, obs);
     if (!f.candidate) continue;
     if (opt_.area_check && !same_area(map.area(id), f.robot.mean, obs)) continue;
@@ -237,18 +252,22 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
     o.modes = f.modes;
     outcomes.push_back(o);
   }
-  // Normalise, drop the improbable, normalise again.
   std::vector<double> lf;
   for (const Outcome& o : outcomes) lf.push_back(o.log_f);
-  double z = log_sum_exp(lf);
+  const double z = log_sum_exp(lf);
   for (Outcome& o : outcomes) o.probability = std::exp(o.log_f - z);
-  std::vector<Outcome> kept;
-  for (const Outcome& o : outcomes)
-    if (o.probability >= opt_.min_probability) kept.push_back(o);
-  if (kept.empty()) kept.push_back(outcomes[0]);  // min_probability < 0.5
-  double total = 0.0;
-  for (const Outcome& o : kept) total += o.probability;
-  for (Outcome& o : kept) o.probability /= total;
+  return outcomes;
+}
+
+std::vector<size_t> probable_outcomes(const std::vector<Outcome>& outcomes,
+                                      double min_probability) {
+  std::vector<size_t> kept;
+  size_t best = 0;
+  for (size_t i = 0; i < outcomes.size(); ++i) {
+    if (outcomes[i].probability >= min_probability) kept.push_back(i);
+    if (outcomes[i].probability > outcomes[best].probability) best = i;
+  }
+  if (kept.empty() && !outcomes.empty()) kept.push_back(best);
   return kept;
 }
 

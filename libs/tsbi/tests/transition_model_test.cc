@@ -76,7 +76,10 @@ TEST(TransitionModel, KnownAreaAgainWinsWhereTheObservationsMatchIt) {
   const auto obs = observe(testing_sim::office_world(),
                            {{2.0, 2.8, 0.2}, {2.5, 2.9, 0.2}, truth});
   const auto out = model().evaluate(s.map, 3, PoseGaussian(believed, diag(0.1, 0.05)), obs);
-  ASSERT_GE(out.size(), 1u);
+  ASSERT_GE(out.size(), 2u);
+  // Both were weighed: "new area" first, then the known areas.
+  EXPECT_TRUE(out[0].is_new());
+  EXPECT_LT(out[0].probability, 0.01);
   for (size_t i = 1; i < out.size(); ++i) EXPECT_FALSE(out[i].is_new());
   const Outcome* one = nullptr;
   for (const auto& o : out)
@@ -155,6 +158,15 @@ TEST(TransitionModel, TheCurrentAreaAndAreasWithoutMapsAreNotCandidates) {
   // Area 3 has no map: never a candidate.
   const auto out1 = model().evaluate(s.map, 1, PoseGaussian(truth, diag(0.1, 0.05)), obs);
   for (const auto& o : out1) EXPECT_NE(o.area, 3u);
+}
+
+TEST(ProbableOutcomes, KeepsThoseAboveTheThresholdOrTheBest) {
+  std::vector<Outcome> o(3);
+  o[0].probability = 0.0005;
+  o[1].probability = 0.9;
+  o[2].probability = 0.0995;
+  EXPECT_EQ(probable_outcomes(o, 1e-3), (std::vector<size_t>{1, 2}));
+  EXPECT_EQ(probable_outcomes(o, 0.95), (std::vector<size_t>{1}));
 }
 
 TEST(Observations, ReExpressedFromTheCurrentPose) {

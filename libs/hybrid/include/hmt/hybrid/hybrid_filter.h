@@ -43,6 +43,8 @@
 
 namespace hmt::hybrid {
 
+constexpr uint32_t kNoChild = 0xffffffffu;
+
 // One TSBI evaluation: a hypothesis at a new-area event and what became of it.
 struct TransitionEvent {
   uint64_t step = 0;
@@ -50,9 +52,11 @@ struct TransitionEvent {
   uint32_t hypothesis = 0;  // the parent
   double parent_probability = 0.0;
   topology::AreaId from_area = topology::kNoArea;
-  std::vector<tsbi::Outcome> outcomes;
-  std::vector<uint32_t> children;        // one per outcome
-  std::vector<topology::AreaId> entered;  // area each child entered
+  std::vector<tsbi::Outcome> outcomes;   // every outcome weighed
+  // Per outcome: the child hypothesis and the area it entered (kNoChild and
+  // kNoArea for outcomes too improbable to follow).
+  std::vector<uint32_t> children;
+  std::vector<topology::AreaId> entered;
 };
 
 // One acceptance by TLCA.

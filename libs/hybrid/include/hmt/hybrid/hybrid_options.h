@@ -24,9 +24,10 @@ struct HybridOptions {
   // Floors of an arc's covariance when a new area is entered: a constant
   // and a part proportional to the distance between the two origins (the
   // particles' spread alone is over-confident after resampling).
-  double arc_std_xy = 0.05;          // [m]
-  double arc_std_theta = 0.02;       // [rad]
-  double arc_std_per_metre = 0.02;   // [m/m] and [rad/m]
+  double arc_std_xy = 0.05;            // [m]
+  double arc_std_theta = 0.02;         // [rad]
+  double arc_std_xy_per_metre = 0.01;  // [m/m]
+  double arc_std_theta_per_metre = 0.002;  // [rad/m]
   void load(Config& cfg, const std::string& section = "hmt");
 };
 

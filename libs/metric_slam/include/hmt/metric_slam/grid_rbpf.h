@@ -91,10 +91,14 @@ class GridRbpf {
   // --- What the hybrid metric-topological layers use ---
   // Enter a new area: every particle takes its current pose as the origin of
   // a fresh map, seeded with the last scan and the given earlier scans of
-  // the current area (each at the particle's own pose for it, re-expressed
-  // in the new frame). Returns, per particle, the new origin expressed in
-  // the frame of the area being left.
-  std::vector<Pose2D> start_new_area(const std::vector<SeedScan>& seeds = {});
+  // the current area, placed by the path of particle `seed_particle`
+  // re-expressed in the new frame. All particles share the seeded map (one
+  // map, not one per particle: the seeds' placement differs between
+  // particles by centimetres, and a shared map costs no memory per
+  // particle). Returns, per particle, the new origin expressed in the frame
+  // of the area being left.
+  std::vector<Pose2D> start_new_area(const std::vector<SeedScan>& seeds = {},
+                                     size_t seed_particle = 0);
   // Re-enter a known area: every particle gets `map` (shared, not copied) and
   // the given pose in that map's frame (one per particle, or one for all).
   void load_area(const grid::OccupancyGrid& map, const std::vector<Pose2D>& poses);

@@ -9,6 +9,7 @@
 #include "hmt/common/sensor_data.h"
 #include "hmt/area/area_options.h"
 #include "hmt/grouping/grouping_options.h"
+#include "hmt/hybrid/hybrid_options.h"
 #include "hmt/metric_slam/rbpf_options.h"
 
 namespace hmt::pipeline {
@@ -32,6 +33,11 @@ struct JobOptions {
   metric_slam::RbpfOptions rbpf;
   area::AreaOptions area;
   grouping::GroupingOptions grouping;
+  tsbi::TsbiOptions tsbi;
+  tlca::TlcaOptions tlca;
+  hybrid::HybridOptions hybrid;
+  // The options of the HMT-SLAM estimator, gathered from the above.
+  hybrid::HmtOptions hmt() const { return {rbpf, area, tsbi, tlca, hybrid}; }
 };
 
 // Reads every option of every component from `cfg`, then fails on any key

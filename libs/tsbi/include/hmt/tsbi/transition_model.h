@@ -88,9 +88,8 @@ class TransitionModel {
   // The outcomes for a hypothesis whose map is `map`, whose robot is in area
   // `current` at `robot` (in that area's frame) and has just made the
   // observations `obs` (points in the robot frame). The new-area outcome
-  // comes first, known areas follow in ascending id. Outcomes below
-  // min_probability are dropped (the new-area one too, when a known area
-  // leaves it less) and the rest renormalised.
+  // comes first, known areas (the candidates) follow in ascending id; the
+  // probabilities sum to 1.
   std::vector<Outcome> evaluate(const topology::HmtMap& map,
                                 topology::AreaId current,
                                 const topology::PoseGaussian& robot,
@@ -118,5 +117,10 @@ class TransitionModel {
   double gain_;
   area::AreaOptions area_;
 };
+
+// The outcomes worth following: indices of those with probability >=
+// min_probability (the most probable one if none is).
+std::vector<size_t> probable_outcomes(const std::vector<Outcome>& outcomes,
+                                      double min_probability);
 
 }  // namespace hmt::tsbi

@@ -46,7 +46,7 @@ struct TsbiOptions {
   double search_step_xy = 0.2;       // [m]
   double search_step_theta = 0.03;   // [rad]
   int search_points = 80;
-  int search_max_poses = 400000;     // the lattice is coarsened beyond this
+  int search_max_poses = 50000;     // the lattice is coarsened beyond this
   int search_modes = 8;              // maxima refined
   // Outcomes less probable than this are dropped (and the rest
   // renormalised).

@@ -1,0 +1,167 @@
+#include "hmt/pipeline/hmt_job.h"
+
+#include <chrono>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "hmt/common/error.h"
+#include "hmt/common/files.h"
+#include "hmt/common/progress.h"
+#include "hmt/common/resources.h"
+#include "hmt/global_map/global_grid.h"
+#include "hmt/global_map/global_poses.h"
+#include "hmt/global_map/overlay.h"
+#include "hmt/grid/map_export.h"
+#include "hmt/hybrid/hybrid_filter.h"
+#include "hmt/io/tum.h"
+#include "hmt/pipeline/hmt_outputs.h"
+#include "hmt/topology/topology_file.h"
+
+namespace hmt::pipeline {
+namespace {
+
+constexpr double kMB = 1024.0 * 1024.0;
+
+// One pose per log step in the global frame: each area visit's poses
+// composed with its area's global pose (a later visit overrides the step
+// they share at the switch).
+std::vector<Pose2D> global_trajectory(const std::vector<hybrid::TrajectorySegment>& segs,
+                                      const global_map::GlobalPoses& poses, size_t steps) {
+  std::vector<Pose2D> out(steps);
+  std::vector<char> set(steps, 0);
+  for (const auto& s : segs) {
+    auto it = poses.poses.find(s.area);
+    if (it == poses.poses.end()) continue;
+    for (size_t k = 0; k < s.poses.size() && s.first_step + k < steps; ++k) {
+      out[s.first_step + k] = it->second.mean + s.poses[k];
+      set[s.first_step + k] = 1;
+    }
+  }
+  for (size_t i = 1; i < steps; ++i)
+    if (!set[i]) out[i] = out[i - 1];
+  return out;
+}
+
+}  // namespace
+
+HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& cfg,
+                          const std::string& out_dir, bool show_progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  make_directories(out_dir);
+  // The configuration first: a run that fails later still says what it used.
+  write_text_atomically(out_dir + "/config_effective.ini", cfg.effective_ini());
+
+  size_t n = log.steps.size();
+  if (opt.input.max_steps > 0) n = std::min(n, static_cast<size_t>(opt.input.max_steps));
+  hybrid::HybridFilter filter(opt.hmt());
+  Progress progress("scans", n);
+  progress.set_enabled(show_progress);
+  std::vector<PmfRow> pmf;
+  std::ostringstream memory_csv;
+  memory_csv << "step,time,peak_rss_mb,map_memory_mb,hypotheses,areas\n";
+  size_t peak_map_bytes = 0;
+  char extra[96];
+  for (size_t i = 0; i < n; ++i) {
+    filter.process(log.steps[i]);
+    for (const auto& [area, p] : filter.position_pmf())
+      pmf.push_back({i, log.steps[i].timestamp, area, p});
+    if (i % 50 == 0 || i + 1 == n) {
+      const size_t bytes = filter.map_memory_bytes();
+      peak_map_bytes = std::max(peak_map_bytes, bytes);
+      char line[160];
+      std::snprintf(line, sizeof line, "%zu,%.6f,%.3f,%.3f,%zu,%zu\n", i,
+                    log.steps[i].timestamp, peak_rss_bytes() / kMB, bytes / kMB,
+                    filter.hypotheses().size(), filter.best().map.area_count());
+      memory_csv << line;
+    }
+    std::snprintf(extra, sizeof extra, "areas %zu  hypotheses %zu  closures %zu",
+                  filter.best().map.area_count(), filter.hypotheses().size(),
+                  filter.stats().loop_closures_accepted);
+    progress.update(i + 1, extra);
+  }
+  progress.finish();
+  if (n == 0) throw InputError(log.source + ": the log has no scans");
+
+  // The global map of the most probable hypothesis: area poses by least
+  // squares over every arc (002 Sec. IV-C), the shortest-path tree as the
+  // fallback when the optimisation cannot run.
+  const topology::HmtMap map = filter.final_map();
+  global_map::PoseGraphReport report;
+  global_map::GlobalPoses poses;
+  std::string pose_method = "least_squares";
+  try {
+    poses = global_map::optimize_poses(map, 1, {}, &report);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hmt-slam: warning: global optimisation failed (%s); "
+                 "using the shortest-path tree\n", e.what());
+    poses = global_map::shortest_path_poses(map, 1);
+    pose_method = "shortest_path";
+  }
+  const std::vector<Pose2D> traj = global_trajectory(filter.final_trajectory(), poses, n);
+  std::vector<io::StampedPose> stamped;
+  for (size_t i = 0; i < n; ++i) stamped.push_back({log.steps[i].timestamp, traj[i]});
+
+  HmtJobSummary sum;
+  sum.scans = n;
+  sum.final_pose = traj.back();
+  sum.areas = map.area_count();
+  sum.arcs = map.arcs().size();
+  sum.loop_closures = filter.stats().loop_closures_accepted;
+  io::write_tum(out_dir + "/trajectory.tum", stamped);
+
+  const grid::OccupancyGrid global = global_map::render_global_grid(map, poses, opt.rbpf.resolution);
+  const grid::MapImage img = grid::render(global, opt.output.map_margin);
+  if (opt.output.png) {
+    sum.map_png = out_dir + "/map.png";
+    grid::write_png(img, sum.map_png);
+    global_map::write_color_png(global_map::draw_topology_overlay(img, map, poses),
+                                out_dir + "/map_topology.png");
+    make_directories(out_dir + "/areas");
+    for (topology::AreaId id : map.area_ids())
+      if (const auto& m = map.area(id).map)
+        grid::write_png(grid::render(*m, opt.output.map_margin),
+                        out_dir + "/areas/area_" + std::to_string(id) + ".png");
+  }
+  if (opt.output.pgm) grid::write_pgm_yaml(img, out_dir + "/map");
+
+  // The file holds one HMT map: the most probable hypothesis's, with its
+  // topological path (the other hypotheses' maps differ from it).
+  topology::save_topology(out_dir + "/hmt_map.bin", map, {filter.best().topo});
+  write_topology_json(out_dir + "/topology.json", map, poses);
+  write_topology_dot(out_dir + "/topology.dot", map);
+  write_pmf_csv(out_dir + "/topological_pmf.csv", pmf);
+  write_tsbi_events_csv(out_dir + "/tsbi_events.csv", filter.transitions());
+  write_text_atomically(out_dir + "/memory.csv", memory_csv.str());
+
+  sum.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  sum.peak_rss_bytes = peak_rss_bytes();
+  const auto& st = filter.stats();
+  nlohmann::json j;
+  j["input"] = log.source;
+  j["scans"] = sum.scans;
+  j["particles"] = opt.rbpf.particles;
+  j["wall_time_s"] = sum.wall_time_s;
+  j["peak_rss_mb"] = sum.peak_rss_bytes / kMB;
+  j["peak_map_memory_mb"] = peak_map_bytes / kMB;
+  j["final_pose"] = {{"x", sum.final_pose.x}, {"y", sum.final_pose.y},
+                     {"theta", sum.final_pose.theta}};
+  j["areas"] = sum.areas;
+  j["arcs"] = sum.arcs;
+  j["keyframes"] = st.keyframes;
+  j["new_area_events"] = st.new_area_events;
+  j["transitions_evaluated"] = filter.transitions().size();
+  j["loop_closures_accepted"] = st.loop_closures_accepted;
+  j["max_hypotheses_alive"] = st.max_hypotheses_alive;
+  j["hypotheses_at_end"] = filter.hypotheses().size();
+  j["forgotten_path_entries"] = st.forgotten_path_entries;
+  j["global_poses"] = {{"method", pose_method},
+                       {"iterations", report.iterations},
+                       {"initial_chi2", report.initial_chi2},
+                       {"final_chi2", report.final_chi2},
+                       {"converged", report.converged}};
+  write_text_atomically(out_dir + "/summary.json", j.dump(2) + "\n");
+  return sum;
+}
+
+}  // namespace hmt::pipeline

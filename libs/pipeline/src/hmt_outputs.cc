@@ -1,0 +1,103 @@
+#include "hmt/pipeline/hmt_outputs.h"
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "hmt/common/files.h"
+
+namespace hmt::pipeline {
+namespace {
+
+std::string fmt(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+nlohmann::json cov_json(const Eigen::Matrix3d& c) {
+  nlohmann::json j = nlohmann::json::array();
+  for (int r = 0; r < 3; ++r) j.push_back({c(r, 0), c(r, 1), c(r, 2)});
+  return j;
+}
+
+}  // namespace
+
+void write_pmf_csv(const std::string& path, const std::vector<PmfRow>& rows) {
+  std::ostringstream o;
+  o << "step,time,area,probability\n";
+  for (const PmfRow& r : rows)
+    o << r.step << ',' << fmt("%.6f", r.time) << ',' << r.area << ','
+      << fmt("%.6g", r.probability) << '\n';
+  write_text_atomically(path, o.str());
+}
+
+void write_tsbi_events_csv(const std::string& path,
+                           const std::vector<hybrid::TransitionEvent>& events) {
+  std::ostringstream o;
+  o << "step,time,hypothesis,hypothesis_probability,from_area,outcome,area,"
+       "log_f,probability,match_ratio,child\n";
+  for (const auto& ev : events)
+    for (size_t i = 0; i < ev.outcomes.size(); ++i) {
+      const auto& oc = ev.outcomes[i];
+      o << ev.step << ',' << fmt("%.6f", ev.time) << ',' << ev.hypothesis << ','
+        << fmt("%.6g", ev.parent_probability) << ',' << ev.from_area << ','
+        << (oc.is_new() ? "new" : "known") << ',';
+      // The area: the known one, or the id the new area got (empty when the
+      // outcome was too improbable to follow).
+      if (!oc.is_new()) o << oc.area;
+      else if (ev.entered[i] != topology::kNoArea) o << ev.entered[i];
+      o << ',' << fmt("%.4f", oc.log_f) << ',' << fmt("%.6g", oc.probability) << ','
+        << fmt("%.4f", oc.match_ratio) << ',';
+      if (ev.children[i] != hybrid::kNoChild) o << ev.children[i];
+      o << '\n';
+    }
+  write_text_atomically(path, o.str());
+}
+
+void write_topology_json(const std::string& path, const topology::HmtMap& map,
+                         const global_map::GlobalPoses& poses) {
+  nlohmann::json j;
+  j["root"] = poses.root;
+  j["areas"] = nlohmann::json::array();
+  for (topology::AreaId id : map.area_ids()) {
+    const topology::Area& a = map.area(id);
+    nlohmann::json ja;
+    ja["id"] = id;
+    ja["keyframes"] = a.keyframes.size();
+    ja["parent"] = a.frame.parent == topology::kNoArea ? nlohmann::json(nullptr)
+                                                       : nlohmann::json(a.frame.parent);
+    ja["created_step"] = a.frame.created_step;
+    ja["created_time"] = a.frame.created_time;
+    auto it = poses.poses.find(id);
+    if (it != poses.poses.end()) {
+      const auto& p = it->second;
+      ja["global_pose"] = {{"x", p.mean.x}, {"y", p.mean.y}, {"theta", p.mean.theta}};
+      ja["global_cov"] = cov_json(p.cov);
+    }
+    j["areas"].push_back(ja);
+  }
+  j["arcs"] = nlohmann::json::array();
+  for (const auto& [key, arc] : map.arcs()) {
+    j["arcs"].push_back({{"from", arc.from},
+                         {"to", arc.to},
+                         {"mean", {{"x", arc.pose.mean.x}, {"y", arc.pose.mean.y},
+                                   {"theta", arc.pose.mean.theta}}},
+                         {"cov", cov_json(arc.pose.cov)},
+                         {"measurements", arc.measurements}});
+  }
+  write_text_atomically(path, j.dump(2) + "\n");
+}
+
+void write_topology_dot(const std::string& path, const topology::HmtMap& map) {
+  std::ostringstream o;
+  o << "graph hmt {\n  node [shape=circle];\n";
+  for (topology::AreaId id : map.area_ids()) o << "  " << id << ";\n";
+  for (const auto& [key, arc] : map.arcs())
+    o << "  " << arc.from << " -- " << arc.to << " [label=\"" << arc.measurements
+      << "\"];\n";
+  o << "}\n";
+  write_text_atomically(path, o.str());
+}
+
+}  // namespace hmt::pipeline

@@ -1,0 +1,78 @@
+// Checks of an `hmt-slam run` output folder for a loop closed into area 1:
+// TSBI weighed "a new area" against "area 1 again" at an event in an area
+// numbered `from_area` or later, and area 1 won; the topology holds the
+// loop's arc -- from that area into area 1, either new or, when the loop
+// passed through area 2 only, the arc 1-2 fused again (Eq. 10); and the PMF
+// of the topological position put area 1 above 0.9 after that event.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "run_app.h"
+
+namespace hmt::e2e {
+
+inline std::vector<std::vector<std::string>> read_csv(const std::string& path) {
+  std::vector<std::vector<std::string>> rows;
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+    if (!line.empty() && line.back() == ',') cells.push_back("");
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+inline void expect_loop_closed_into_area_1(const std::string& out, int from_area) {
+  // tsbi_events.csv: step,time,hypothesis,hypothesis_probability,from_area,
+  // outcome,area,log_f,probability,match_ratio,child
+  struct Weighed {
+    double p_new = -1, p_one = -1;
+    std::string from;
+  };
+  std::map<std::string, Weighed> events;  // by "step/hypothesis"
+  for (const auto& r : read_csv(out + "/tsbi_events.csv")) {
+    ASSERT_EQ(r.size(), 11u);
+    Weighed& w = events[r[0] + "/" + r[2]];
+    w.from = r[4];
+    if (r[5] == "new") w.p_new = std::stod(r[8]);
+    if (r[5] == "known" && r[6] == "1") w.p_one = std::stod(r[8]);
+  }
+  long closure_step = -1;
+  for (const auto& [key, w] : events)
+    if (w.p_new >= 0 && w.p_one > w.p_new && std::stoi(w.from) >= from_area) {
+      closure_step = std::stol(key.substr(0, key.find('/')));
+      break;
+    }
+  ASSERT_GE(closure_step, 0) << "no event weighed a new area against area 1 with area 1 winning";
+
+  const auto topo = nlohmann::json::parse(slurp(out + "/topology.json"));
+  bool loop_arc = false;
+  for (const auto& a : topo["arcs"]) {
+    const int to = a["to"].get<int>();
+    if (a["from"].get<int>() != 1 || to < from_area) continue;
+    if (to > 2 || a["measurements"].get<int>() >= 2) loop_arc = true;
+  }
+  EXPECT_TRUE(loop_arc) << "the final topology has no arc from a later area into area 1";
+
+  bool settled = false;
+  for (const auto& r : read_csv(out + "/topological_pmf.csv"))
+    if (std::stol(r[0]) >= closure_step && r[2] == "1" && std::stod(r[3]) > 0.9) settled = true;
+  EXPECT_TRUE(settled) << "P(area 1) never exceeded 0.9 after the closure";
+
+  const auto summary = nlohmann::json::parse(slurp(out + "/summary.json"));
+  EXPECT_GE(summary["loop_closures_accepted"].get<int>(), 1);
+}
+
+}  // namespace hmt::e2e
