@@ -13,6 +13,7 @@
 #   LOGS        logs to run ["malaga edmonton aces intel"]; "malaga" is the
 #               embedded datasets/malaga_one_loop.rawlog, any other NAME is
 #               $DATASETS/carmen/NAME.log.gz
+#   MODE        ours: "run" (HMT-SLAM) or "metric" (the single-map RBPF) [run]
 #   PARTICLES   particles for both programs [30]
 #   THREADS     our metric_slam.threads [config default: 0 = one per core];
 #               rbpf-slam is single-threaded
@@ -39,6 +40,7 @@ source "$BENCH_REPO/scripts/bench_lib.sh"
 
 LOGS=${LOGS:-malaga edmonton aces intel}
 PARTICLES=${PARTICLES:-30}
+MODE=${MODE:-run}
 THREADS=${THREADS:-}
 SEED=${SEED:-1}
 REPEAT=${REPEAT:-1}
@@ -53,6 +55,7 @@ MRPT_INI=${MRPT_INI:-/usr/share/mrpt/config_files/rbpf-slam/gridmapping_optimal_
 CONFIG=$BENCH_REPO/config/default.ini
 
 # ---------------------------------------------------------------- checks
+[[ "$MODE" == run || "$MODE" == metric ]] || bench_die "MODE must be 'run' or 'metric', not '$MODE'"
 [[ "$PARTICLES" =~ ^[1-9][0-9]*$ ]] || bench_die "PARTICLES must be a positive integer, not '$PARTICLES'"
 [[ "$SEED" =~ ^[0-9]+$ ]] || bench_die "SEED must be a non-negative integer, not '$SEED'"
 [[ -z "$THREADS" || "$THREADS" =~ ^[0-9]+$ ]] || bench_die "THREADS must be a non-negative integer, not '$THREADS'"
@@ -104,10 +107,10 @@ run_ours() {
   local name=$1
   local d=$WORK_DIR/$name/ours
   rm -rf "$d" && mkdir -p "$d"
-  local args=(run --config "$CONFIG" --input "$INPUT" --out "$d/out" --quiet
+  local args=("$MODE" --config "$CONFIG" --input "$INPUT" --out "$d/out" --quiet
     --set "metric_slam.particles=$PARTICLES" --set "metric_slam.seed=$SEED")
   [[ -n $THREADS ]] && args+=(--set "metric_slam.threads=$THREADS")
-  bench_log "$name: hmt-slam run ($PARTICLES particles)"
+  bench_log "$name: hmt-slam $MODE ($PARTICLES particles)"
   if ! bench_measure_best "$REPEAT" "$TIMEOUT" "$d" "$HMT_SLAM" "${args[@]}"; then
     ERR=$BENCH_ERR
     return 1
@@ -235,7 +238,7 @@ report() {
   echo "- machine: $MACHINE"
   echo "- load average (1/5/15 min) at start: $LOAD_START, at end: $LOAD_END (other work on the machine inflates the times)"
   echo "- particles: $PARTICLES (both); seed $SEED; our threads: $OURS_THREADS (rbpf-slam: 1)"
-  echo "- ours: \`hmt-slam run\` with config/default.ini, commit $REV"
+  echo "- ours: \`hmt-slam $MODE\` with config/default.ini, commit $REV"
   echo "- MRPT: rbpf-slam $MRPT_VERSION with $(basename "$MRPT_INI") (files, windows and logging off, otherwise unchanged)"
   echo "- both read the same rawlog (CARMEN logs converted once by \`hmt-slam convert --format sf\`)"
   echo "- wall time, CPU time (user + system, all threads) and peak RSS from GNU \`time -v\` of the whole process (reading the log and writing the map included); fastest of $REPEAT run(s) each"
