@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 #include <unordered_set>
 
 #include "hmt/common/error.h"
+#include "hmt/common/log_sum_exp.h"
 #include "hmt/common/random.h"
 #include "hmt/tsbi/observations.h"
 
@@ -15,20 +15,7 @@ namespace {
 using topology::AreaId;
 using topology::PoseGaussian;
 
-int thread_count(int requested) {
-  if (requested > 0) return requested;
-  const unsigned hc = std::thread::hardware_concurrency();
-  return hc ? static_cast<int>(hc) : 1;
-}
 
-double log_sum_exp(const std::vector<double>& v) {
-  double m = -INFINITY;
-  for (double x : v) m = std::max(m, x);
-  if (!std::isfinite(m)) return m;
-  double s = 0.0;
-  for (double x : v) s += std::exp(x - m);
-  return m + std::log(s);
-}
 
 // Weighted covariance of poses around `mean` (angles unwrapped next to it).
 Eigen::Matrix3d spread(const std::vector<Pose2D>& poses, const std::vector<double>& w,
@@ -52,7 +39,8 @@ std::vector<Pose2D> current_poses(const metric_slam::GridRbpf& f) {
 
 HybridFilter::HybridFilter(const HmtOptions& options)
     : opt_(options),
-      pool_(std::make_shared<metric_slam::WorkerPool>(thread_count(options.rbpf.threads))),
+      pool_(std::make_shared<metric_slam::WorkerPool>(
+          metric_slam::WorkerPool::threads_for(options.rbpf.threads))),
       aam_(options.area),
       tsbi_(options.tsbi, options.rbpf.matcher, options.rbpf.likelihood_gain, options.area) {}
 
@@ -110,15 +98,9 @@ void HybridFilter::add_keyframe(const LogStep& step) {
 
 void HybridFilter::on_new_area(const area::AreaDecision& decision, const LogStep& step) {
   ++stats_.new_area_events;
+  const std::vector<double> before = probabilities();
   std::vector<Hypothesis> parents;
   parents.swap(hyps_);
-  const std::vector<double> before = [&] {
-    std::vector<double> lw;
-    for (const auto& h : parents) lw.push_back(h.topo.log_weight);
-    const double z = log_sum_exp(lw);
-    for (double& x : lw) x = std::exp(x - z);
-    return lw;
-  }();
   for (size_t i = 0; i < parents.size(); ++i) {
     std::vector<Hypothesis> children = branch(std::move(parents[i]), decision, step);
     transitions_.back().parent_probability = before[i];

@@ -9,32 +9,19 @@
 #include <unordered_set>
 
 #include "hmt/common/error.h"
+#include "hmt/common/log_sum_exp.h"
 #include "hmt/grid/scan_insertion.h"
 
 namespace hmt::metric_slam {
 namespace {
 
-// Decorrelates (seed, step, particle) into a stream seed.
-uint64_t mix(uint64_t x) { return mix_seed(x); }
 
-double log_sum_exp(const std::vector<double>& v) {
-  const double m = *std::max_element(v.begin(), v.end());
-  if (!std::isfinite(m)) return m;
-  double s = 0.0;
-  for (double x : v) s += std::exp(x - m);
-  return m + std::log(s);
-}
 
-int thread_count(int requested) {
-  if (requested > 0) return requested;
-  const unsigned hc = std::thread::hardware_concurrency();
-  return hc ? static_cast<int>(hc) : 1;
-}
 
 }  // namespace
 
 GridRbpf::GridRbpf(const RbpfOptions& opt)
-    : GridRbpf(opt, std::make_shared<WorkerPool>(thread_count(opt.threads))) {}
+    : GridRbpf(opt, std::make_shared<WorkerPool>(WorkerPool::threads_for(opt.threads))) {}
 
 GridRbpf::GridRbpf(const RbpfOptions& opt, std::shared_ptr<WorkerPool> pool)
     : opt_(opt),
@@ -193,14 +180,14 @@ void GridRbpf::process(const LogStep& input) {
   const double lattice_scale =
       lattice_pts.hit.empty() ? 1.0
                               : static_cast<double>(pts.hit.size()) / lattice_pts.hit.size();
-  const uint64_t step_seed = mix(opt_.seed ^ mix(stats_.steps));
+  const uint64_t step_seed = mix_seed(opt_.seed ^ mix_seed(stats_.steps));
   std::vector<char> fell_back(particles_.size(), 0);
   std::vector<double> before(particles_.size());
   for (size_t i = 0; i < particles_.size(); ++i) before[i] = particles_[i].log_weight;
   pool_->parallel_for(particles_.size(), [&](size_t i) {
     bool fb = false;
     move_particle(i, step, pts, lattice_pts, lattice_scale,
-                  mix(step_seed ^ (i * 0x632be59bd9b4e019ULL)), &fb);
+                  mix_seed(step_seed ^ (i * 0x632be59bd9b4e019ULL)), &fb);
     fell_back[i] = fb;
   });
   for (char f : fell_back) stats_.odometry_fallbacks += (f != 0);

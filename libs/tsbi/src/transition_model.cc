@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "hmt/area/ncut.h"
+#include "hmt/common/log_sum_exp.h"
 #include "hmt/area/sso_graph.h"
 #include "hmt/topology/shortest_paths.h"
 
@@ -15,14 +16,6 @@ namespace {
 using topology::AreaId;
 using topology::PoseGaussian;
 
-double log_sum_exp(const std::vector<double>& v) {
-  double m = -INFINITY;
-  for (double x : v) m = std::max(m, x);
-  if (!std::isfinite(m)) return m;
-  double s = 0.0;
-  for (double x : v) s += std::exp(x - m);
-  return m + std::log(s);
-}
 
 // The match starts: the prior mean and the lattice {-k, 0, k}^3 along the
 // prior's principal axes (whitened by its Cholesky factor).

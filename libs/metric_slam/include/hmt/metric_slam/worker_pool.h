@@ -25,6 +25,8 @@ class WorkerPool {
   // thrown by fn are rethrown here (the first one).
   void parallel_for(size_t n, const std::function<void(size_t)>& fn);
   int threads() const { return static_cast<int>(workers_.size()) + 1; }
+  // The thread count for a requested one: itself if > 0, else one per core.
+  static int threads_for(int requested);
 
  private:
   void worker_loop();
