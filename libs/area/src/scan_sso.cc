@@ -1,9 +1,17 @@
 #include "hmt/area/scan_sso.h"
 
+#include "hmt/area/keyframe.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace hmt::area {
+
+size_t valid_returns(const LaserScan& scan) {
+  size_t n = 0;
+  for (size_t i = 0; i < scan.size(); ++i) n += is_valid_return(scan, i);
+  return n;
+}
 
 bool is_valid_return(const LaserScan& scan, size_t i) {
   if (i < scan.valid.size() && !scan.valid[i]) return false;

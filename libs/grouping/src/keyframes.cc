@@ -5,16 +5,6 @@
 #include "hmt/area/scan_sso.h"
 
 namespace hmt::grouping {
-namespace {
-
-size_t valid_returns(const LaserScan& scan) {
-  size_t n = 0;
-  for (size_t i = 0; i < scan.size(); ++i) n += area::is_valid_return(scan, i);
-  return n;
-}
-
-}  // namespace
-
 KeyframeSelection select_keyframes(const Log& log, const ScanPoses& poses,
                                    double distance, double angle) {
   KeyframeSelection out;
@@ -28,7 +18,7 @@ KeyframeSelection select_keyframes(const Log& log, const ScanPoses& poses,
       const double turned = std::fabs(wrap_angle(p.theta - last.theta));
       if (moved < distance && turned < angle) continue;
     }
-    if (valid_returns(log.steps[i].scan) < kMinKeyframeReturns) {
+    if (!area::enough_returns(log.steps[i].scan)) {
       ++out.too_few_returns;
       continue;
     }

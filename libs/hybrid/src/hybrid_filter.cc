@@ -7,6 +7,7 @@
 #include "hmt/common/error.h"
 #include "hmt/common/log_sum_exp.h"
 #include "hmt/common/random.h"
+#include "hmt/area/keyframe.h"
 #include "hmt/tsbi/observations.h"
 
 namespace hmt::hybrid {
@@ -59,7 +60,23 @@ void HybridFilter::start(const LogStep& step) {
 }
 
 void HybridFilter::process(const LogStep& step) {
+  if (const std::optional<area::Keyframe> kf = metric_step(step)) {
+    aam_.add_keyframe(*kf);
+    const area::AreaDecision decision = aam_.update();
+    if (decision.new_area) {
+      const std::vector<EventInput> inputs = prepare_event(decision);
+      std::vector<std::vector<tsbi::Outcome>> outcomes;
+      for (const EventInput& in : inputs) outcomes.push_back(evaluate(in));
+      apply_event(decision, inputs, outcomes);
+    }
+  }
+  if (const std::optional<AlignmentJob> job = accept_if_dominant())
+    apply_alignment(*job, align(*job));
+}
+
+std::optional<area::Keyframe> HybridFilter::metric_step(const LogStep& step) {
   step_ = stats_.steps++;
+  time_ = step.timestamp;
   if (hyps_.empty()) {
     start(step);
   } else {
@@ -69,41 +86,87 @@ void HybridFilter::process(const LogStep& step) {
     }
     normalise_and_prune();
   }
-  add_keyframe(step);
-  accept_if_dominant();
+  return keyframe_due(step);
 }
 
-void HybridFilter::add_keyframe(const LogStep& step) {
+std::optional<area::Keyframe> HybridFilter::keyframe_due(const LogStep& step) {
   const Hypothesis& h = best();
   const Pose2D pose = h.aam_from_area + h.filter.best().path.back();
   if (has_keyframe_) {
     const Pose2D d = pose - last_keyframe_pose_;
     if (d.norm() < opt_.hybrid.keyframe_distance &&
         std::fabs(d.theta) < opt_.hybrid.keyframe_angle)
-      return;
+      return std::nullopt;
   }
-  size_t returns = 0;
-  for (uint8_t v : step.scan.valid) returns += v != 0;
-  if (returns < 20) return;  // senses too little to overlap with anything
+  if (!area::enough_returns(step.scan)) return std::nullopt;
   has_keyframe_ = true;
   last_keyframe_pose_ = pose;
-  keyframes_.push_back({step_, step.scan});
+  keyframes_.push_back({step_, std::make_shared<const LaserScan>(step.scan)});
   ++stats_.keyframes;
   for (Hypothesis& hh : hyps_)
     hh.map.add_keyframe(hh.current_area(), {hh.filter.best().path.back(), step.scan});
-  aam_.add_keyframe(area::Keyframe{area::PoseGaussian(pose), step.scan});
-  const area::AreaDecision decision = aam_.update();
-  if (decision.new_area) on_new_area(decision, step);
+  return area::Keyframe{area::PoseGaussian(pose), step.scan};
 }
 
-void HybridFilter::on_new_area(const area::AreaDecision& decision, const LogStep& step) {
+std::vector<EventInput> HybridFilter::prepare_event(const area::AreaDecision& decision) const {
+  const std::vector<double> p = probabilities();
+  std::vector<EventInput> inputs;
+  for (size_t i = 0; i < hyps_.size(); ++i) {
+    const Hypothesis& h = hyps_[i];
+    const metric_slam::GridRbpf& f = h.filter;
+    const metric_slam::Particle& bp = f.best();
+    const Pose2D now = bp.path.back();
+    EventInput in;
+    in.hypothesis = h.id;
+    in.step = step_;
+    in.time = time_;
+    in.probability = p[i];
+    in.from_area = h.current_area();
+    in.area_start_step = h.area_start_step;
+    in.map = h.map;
+    // The robot in the current area: the best particle, with the particles'
+    // spread (floored: after resampling it can be nearly zero).
+    in.robot = PoseGaussian(now, spread(current_poses(f), f.weights(), now));
+    in.robot.cov.diagonal() += Eigen::Vector3d(1e-4, 1e-4, 1e-5);
+    // The latest observations: the new area's keyframes seen from the best
+    // particle's path (those taken in this area; earlier ones are in no path).
+    std::vector<tsbi::PosedScan> posed;
+    for (int k : decision.new_area_keyframes) {
+      const KeyframeRecord& kf = keyframes_[static_cast<size_t>(k)];
+      if (kf.step < h.area_start_step) continue;
+      const size_t idx = static_cast<size_t>(kf.step - h.area_start_step);
+      if (idx >= bp.path.size()) continue;
+      posed.push_back({bp.path[idx], kf.scan.get()});
+      in.scans.push_back(kf.scan);
+    }
+    const auto& ro = opt_.rbpf;
+    in.observations = tsbi::gather_observations(posed, now, ro.matcher.max_range, ro.resolution,
+                                                opt_.tsbi.max_points);
+    inputs.push_back(std::move(in));
+  }
+  return inputs;
+}
+
+std::vector<tsbi::Outcome> HybridFilter::evaluate(const EventInput& in) const {
+  return tsbi_.evaluate(in.map, in.from_area, in.robot, in.observations);
+}
+
+void HybridFilter::apply_event(const area::AreaDecision& decision,
+                               const std::vector<EventInput>& inputs,
+                               const std::vector<std::vector<tsbi::Outcome>>& outcomes) {
+  if (inputs.size() != outcomes.size())
+    throw Error(ExitCode::kInternal, "apply_event: one TSBI result per input is needed");
   ++stats_.new_area_events;
-  const std::vector<double> before = probabilities();
   std::vector<Hypothesis> parents;
   parents.swap(hyps_);
-  for (size_t i = 0; i < parents.size(); ++i) {
-    std::vector<Hypothesis> children = branch(std::move(parents[i]), decision, step);
-    transitions_.back().parent_probability = before[i];
+  for (Hypothesis& parent : parents) {
+    size_t k = 0;
+    while (k < inputs.size() && inputs[k].hypothesis != parent.id) ++k;
+    if (k == inputs.size()) {  // born after the snapshot: nothing to decide
+      hyps_.push_back(std::move(parent));
+      continue;
+    }
+    std::vector<Hypothesis> children = branch(std::move(parent), decision, inputs[k], outcomes[k]);
     for (auto& c : children) hyps_.push_back(std::move(c));
   }
   normalise_and_prune();
@@ -111,41 +174,35 @@ void HybridFilter::on_new_area(const area::AreaDecision& decision, const LogStep
 
 std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
                                              const area::AreaDecision& decision,
-                                             const LogStep& step) {
+                                             const EventInput& input,
+                                             const std::vector<tsbi::Outcome>& outcomes) {
   const AreaId c = parent.current_area();
   const metric_slam::GridRbpf& f = parent.filter;
   const size_t best = f.best_index();
   const metric_slam::Particle& bp = f.particles()[best];
-  const Pose2D now = bp.path.back();
   const std::vector<double> w = f.weights();
+  // Steps the particles made since the snapshot (0 when applied at once).
+  const bool late = input.step != step_ && input.area_start_step == parent.area_start_step;
+  const size_t snapshot_index = static_cast<size_t>(input.step - parent.area_start_step);
 
-  // The latest observations: the new area's keyframes seen from the best
-  // particle's path (those taken in this area; earlier ones are in no path).
+  // The new area's keyframes, to seed a fresh map with.
   std::vector<metric_slam::SeedScan> seeds;
-  std::vector<tsbi::PosedScan> posed;
   for (int k : decision.new_area_keyframes) {
     const KeyframeRecord& kf = keyframes_[static_cast<size_t>(k)];
     if (kf.step < parent.area_start_step) continue;
     const size_t idx = static_cast<size_t>(kf.step - parent.area_start_step);
     if (idx >= bp.path.size()) continue;
-    seeds.push_back({idx, &kf.scan});
-    posed.push_back({bp.path[idx], &kf.scan});
+    seeds.push_back({idx, kf.scan.get()});
   }
-  const auto& ro = opt_.rbpf;
-  const tsbi::Observations obs = tsbi::gather_observations(
-      posed, now, ro.matcher.max_range, ro.resolution, opt_.tsbi.max_points);
-
-  // The robot in the current area: the best particle, with the particles'
-  // spread (floored: after resampling it can be nearly zero).
-  PoseGaussian robot(now, spread(current_poses(f), w, now));
-  robot.cov.diagonal() += Eigen::Vector3d(1e-4, 1e-4, 1e-5);
 
   TransitionEvent ev;
-  ev.step = step_;
-  ev.time = step.timestamp;
+  ev.step = input.step;
+  ev.time = input.time;
   ev.hypothesis = parent.id;
+  ev.parent_probability = input.probability;
   ev.from_area = c;
-  ev.outcomes = tsbi_.evaluate(parent.map, c, robot, obs);
+  ev.outcomes = outcomes;
+  const PoseGaussian& robot = input.robot;
 
   // The area being left is archived under this hypothesis, with the best
   // particle's map and path.
@@ -155,7 +212,9 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
   seg->first_step = parent.area_start_step;
   seg->poses = bp.path;
   parent.trajectory.push_back(std::move(seg));
-  const Pose2D aam_now = parent.aam_from_area + now;
+  // The snapshot's robot pose in the AAM frame (the known-area outcomes
+  // place the robot as it was then).
+  const Pose2D aam_then = parent.aam_from_area + robot.mean;
 
   // Outcomes too improbable to follow get no child; the others share the
   // parent's weight in proportion.
@@ -165,12 +224,12 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
   ev.children.assign(ev.outcomes.size(), kNoChild);
   ev.entered.assign(ev.outcomes.size(), topology::kNoArea);
   std::vector<Hypothesis> children;
-  for (size_t f = 0; f < follow.size(); ++f) {
-    const size_t k = follow[f];
+  for (size_t fi = 0; fi < follow.size(); ++fi) {
+    const size_t k = follow[fi];
     const tsbi::Outcome& o = ev.outcomes[k];
     // The last outcome takes the parent itself; the others copy it (maps and
     // area tables are shared copy-on-write).
-    Hypothesis child = f + 1 == follow.size() ? std::move(parent) : parent;
+    Hypothesis child = fi + 1 == follow.size() ? std::move(parent) : parent;
     child.id = next_hypothesis_id_++;
     child.filter.reseed(mix_seed(opt_.rbpf.seed ^ mix_seed(child.id)));
     child.topo.log_weight += std::log(o.probability / followed);
@@ -188,32 +247,37 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
       frame.parent = c;
       frame.origin_in_parent = origins[best];
       frame.created_step = step_;
-      frame.created_time = step.timestamp;
+      frame.created_time = time_;
       child.map.add_area(entered, frame);
       child.map.add_arc_measurement(c, entered, arc);
       child.aam_from_area = child.aam_from_area + origins[best];
     } else {
       entered = o.area;
       // Each particle's pose in the known area: a draw from the match
-      // posterior (what the observations say, not where the particle was).
+      // posterior (what the observations say, not where the particle was),
+      // moved on by the particle's own motion since the snapshot.
       Random rng(mix_seed(opt_.rbpf.seed ^ mix_seed(step_ * 1000003ULL + child.id)));
       std::vector<Pose2D> poses;
-      for (size_t i = 0; i < child.filter.particles().size(); ++i)
-        poses.push_back(topology::sample(o.robot, rng));
+      for (const metric_slam::Particle& p : child.filter.particles()) {
+        Pose2D x = topology::sample(o.robot, rng);
+        if (late && snapshot_index < p.path.size())
+          x = x + (p.path.back() - p.path[snapshot_index]);
+        poses.push_back(x);
+      }
       child.filter.load_area(*child.map.area(o.area).map, poses);
       tlca::ClosureRecord rec;
       rec.from = c;
       rec.to = o.area;
-      rec.step = step_;
+      rec.step = input.step;
       if (const topology::Arc* a = child.map.find_arc(c, o.area)) rec.arc_before = *a;
       // gamma's frame in c's frame: the robot in c composed with the inverse
-      // of the robot in gamma.
+      // of the robot in gamma (both at the snapshot).
       rec.measurement = topology::compose(robot, topology::inverse(o.robot));
       const double sxy = opt_.hybrid.arc_std_xy, sth = opt_.hybrid.arc_std_theta;
       rec.measurement.cov.diagonal() += Eigen::Vector3d(sxy * sxy, sxy * sxy, sth * sth);
       child.map.add_arc_measurement(c, o.area, rec.measurement);
       child.pending_closures.push_back(rec);
-      child.aam_from_area = aam_now + o.robot.mean.inverse();
+      child.aam_from_area = aam_then + o.robot.mean.inverse();
     }
     topology::enter_area(child.topo, entered, step_);
     ev.children[k] = child.id;
@@ -268,34 +332,35 @@ void HybridFilter::normalise_and_prune() {
   stats_.max_hypotheses_alive = std::max(stats_.max_hypotheses_alive, hyps_.size());
 }
 
-void HybridFilter::accept_if_dominant() {
+void HybridFilter::forget_shared_history() {
+  std::vector<topology::TopologicalHypothesis> t;
+  for (const auto& h : hyps_) t.push_back(h.topo);
+  const std::vector<topology::PathEntry> common = topology::common_prefix(t);
+  if (common.size() <= 1) return;
+  const size_t n = topology::forget_common_history(t);
+  accepted_path_.insert(accepted_path_.end(), common.begin(), common.begin() + n);
+  for (size_t i = 0; i < hyps_.size(); ++i) hyps_[i].topo.path = t[i].path;
+  stats_.forgotten_path_entries += n;
+}
+
+std::optional<AlignmentJob> HybridFilter::accept_if_dominant() {
   const std::vector<double> p = probabilities();
   const auto winner = tlca::dominant(p, opt_.tlca);
   if (!winner) {
     // No acceptance: only the history every hypothesis shares is forgotten.
-    std::vector<topology::TopologicalHypothesis> t;
-    for (const auto& h : hyps_) t.push_back(h.topo);
-    const std::vector<topology::PathEntry> common = topology::common_prefix(t);
-    if (common.size() > 1) {
-      const size_t n = topology::forget_common_history(t);
-      accepted_path_.insert(accepted_path_.end(), common.begin(), common.begin() + n);
-      for (size_t i = 0; i < hyps_.size(); ++i) hyps_[i].topo.path = t[i].path;
-      stats_.forgotten_path_entries += n;
-    }
-    return;
+    forget_shared_history();
+    return std::nullopt;
   }
   Hypothesis& w = hyps_[*winner];
-  if (hyps_.size() == 1 && w.pending_closures.empty() && w.topo.path.size() <= 1) return;
-  AcceptanceEvent ev;
-  ev.step = step_;
-  ev.hypothesis = w.id;
-  ev.probability = p[*winner];
-  ev.dropped = hyps_.size() - 1;
-  for (const tlca::ClosureRecord& rec : w.pending_closures) {
-    ev.closures.push_back(tlca::accept_closure(w.map, rec, opt_.tlca));
-    ++stats_.loop_closures_accepted;
-  }
-  w.pending_closures.clear();
+  if (hyps_.size() == 1 && w.pending_closures.empty() && w.topo.path.size() <= 1)
+    return std::nullopt;
+  AlignmentJob job;
+  job.step = step_;
+  job.hypothesis = w.id;
+  job.probability = p[*winner];
+  job.dropped = hyps_.size() - 1;
+  job.closures.swap(w.pending_closures);
+  job.map = w.map;
   // The accepted path is forgotten up to the current area.
   const size_t n = w.topo.path.size() - 1;
   accepted_path_.insert(accepted_path_.end(), w.topo.path.begin(), w.topo.path.begin() + n);
@@ -305,7 +370,30 @@ void HybridFilter::accept_if_dominant() {
   Hypothesis survivor = std::move(w);
   hyps_.clear();
   hyps_.push_back(std::move(survivor));
-  if (ev.dropped > 0 || !ev.closures.empty()) acceptances_.push_back(std::move(ev));
+  return job;
+}
+
+std::vector<tlca::ClosureReport> HybridFilter::align(const AlignmentJob& job) const {
+  std::vector<tlca::ClosureReport> reports;
+  for (const tlca::ClosureRecord& rec : job.closures)
+    reports.push_back(tlca::align_closure(job.map, rec, opt_.tlca));
+  return reports;
+}
+
+void HybridFilter::apply_alignment(const AlignmentJob& job,
+                                   const std::vector<tlca::ClosureReport>& reports) {
+  for (const tlca::ClosureReport& r : reports) {
+    for (Hypothesis& h : hyps_) tlca::apply_closure(h.map, r);
+    ++stats_.loop_closures_accepted;
+  }
+  if (job.dropped == 0 && reports.empty()) return;
+  AcceptanceEvent ev;
+  ev.step = job.step;
+  ev.hypothesis = job.hypothesis;
+  ev.probability = job.probability;
+  ev.dropped = job.dropped;
+  ev.closures = reports;
+  acceptances_.push_back(std::move(ev));
 }
 
 size_t HybridFilter::map_memory_bytes() const {

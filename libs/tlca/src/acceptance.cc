@@ -29,8 +29,8 @@ std::optional<size_t> dominant(const std::vector<double>& probabilities,
   return std::nullopt;
 }
 
-ClosureReport accept_closure(topology::HmtMap& map, const ClosureRecord& closure,
-                             const TlcaOptions& options) {
+ClosureReport align_closure(const topology::HmtMap& map, const ClosureRecord& closure,
+                            const TlcaOptions& options) {
   ClosureReport report;
   report.record = closure;
   report.used = closure.measurement;
@@ -55,6 +55,11 @@ ClosureReport accept_closure(topology::HmtMap& map, const ClosureRecord& closure
       report.reason = r.reason;
     }
   }
+  return report;
+}
+
+void apply_closure(topology::HmtMap& map, const ClosureReport& report) {
+  const ClosureRecord& closure = report.record;
   topology::Arc arc;
   arc.from = closure.from;
   arc.to = closure.to;
@@ -69,6 +74,12 @@ ClosureReport accept_closure(topology::HmtMap& map, const ClosureRecord& closure
     arc.measurements = b.measurements + 1;
   }
   map.set_arc(arc);
+}
+
+ClosureReport accept_closure(topology::HmtMap& map, const ClosureRecord& closure,
+                             const TlcaOptions& options) {
+  ClosureReport report = align_closure(map, closure, options);
+  apply_closure(map, report);
   return report;
 }
 

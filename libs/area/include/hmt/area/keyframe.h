@@ -3,6 +3,8 @@
 // there.
 #pragma once
 
+#include <cstddef>
+
 #include "hmt/area/pose_gaussian.h"
 #include "hmt/common/sensor_data.h"
 
@@ -12,5 +14,14 @@ struct Keyframe {
   PoseGaussian pose;  // robot pose in a common frame (area or global)
   LaserScan scan;
 };
+
+// A scan with fewer valid returns (is_valid_return) than this senses too
+// little to overlap with anything: it would become an isolated node, a group
+// of its own, so it is never a keyframe.
+constexpr size_t kMinKeyframeReturns = 20;
+size_t valid_returns(const LaserScan& scan);
+inline bool enough_returns(const LaserScan& scan) {
+  return valid_returns(scan) >= kMinKeyframeReturns;
+}
 
 }  // namespace hmt::area

@@ -11,10 +11,7 @@
 
 namespace hmt::grouping {
 
-// A scan with fewer valid returns than this senses too little to overlap
-// with anything (it would become an isolated node, i.e. a group of its own);
-// it is never a keyframe.
-constexpr size_t kMinKeyframeReturns = 20;
+using area::kMinKeyframeReturns;
 
 struct KeyframeRecord {
   int scan = 0;            // index of the scan in the log

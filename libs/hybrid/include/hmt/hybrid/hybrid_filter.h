@@ -26,14 +26,23 @@
 //     fine-aligned and fused into the arcs, and the shared topological
 //     history is forgotten.
 //
+// process() runs the five steps in order. The same steps are also offered one
+// by one (metric_step, prepare_event / evaluate / apply_event,
+// accept_if_dominant / align / apply_alignment) so the framework can run the
+// area abstraction, TSBI and TLCA on threads of their own: evaluate() and
+// align() are const and read only the snapshot they are given, and the
+// apply_ methods accept results computed some steps earlier (live mode).
+//
 // Deterministic: hypotheses are processed in id order, each with its own
 // random streams derived from (seed, hypothesis id); particle work is
 // parallel but index-deterministic (metric_slam::WorkerPool). Not
-// synchronised: one thread drives an instance.
+// synchronised: one thread drives the non-const methods; evaluate() and
+// align() may run on other threads meanwhile.
 #pragma once
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "hmt/area/online_partitioner.h"
@@ -68,6 +77,34 @@ struct AcceptanceEvent {
   std::vector<tlca::ClosureReport> closures;
 };
 
+// TSBI's input for one hypothesis at a new-area event: a snapshot taken by
+// prepare_event (the map is shared copy-on-write), so evaluate() can run on
+// another thread while the particles move on.
+struct EventInput {
+  uint32_t hypothesis = 0;
+  uint64_t step = 0;  // the step at which the snapshot was taken
+  double time = 0.0;
+  double probability = 0.0;  // the hypothesis's, at the snapshot
+  topology::AreaId from_area = topology::kNoArea;
+  uint64_t area_start_step = 0;
+  topology::HmtMap map;
+  topology::PoseGaussian robot;  // in from_area: best particle, particles' spread
+  tsbi::Observations observations;
+  // The keyframe scans observations.scans point to.
+  std::vector<std::shared_ptr<const LaserScan>> scans;
+};
+
+// What TLCA must do after an acceptance: fine-align the accepted
+// hypothesis's loop closures over a snapshot of its map.
+struct AlignmentJob {
+  uint64_t step = 0;
+  uint32_t hypothesis = 0;
+  double probability = 0.0;
+  size_t dropped = 0;
+  topology::HmtMap map;
+  std::vector<tlca::ClosureRecord> closures;
+};
+
 struct HybridStats {
   size_t steps = 0;
   size_t keyframes = 0;
@@ -81,7 +118,32 @@ class HybridFilter {
  public:
   explicit HybridFilter(const HmtOptions& options);
 
+  // All five steps, in order (the sequential pipeline).
   void process(const LogStep& step);
+
+  // Step 1, metric SLAM: every hypothesis processes the step; returns the
+  // keyframe (in the area abstraction's continuous frame) when one is due.
+  // Keyframes are numbered from 0 in the order returned, as the AAM does.
+  std::optional<area::Keyframe> metric_step(const LogStep& step);
+  // Step 3, TSBI: snapshots of every hypothesis at a new-area decision,
+  // their evaluation (const, thread-safe) and the branching by the results
+  // (outcomes[i] for inputs[i]). Inputs of hypotheses gone in the meantime
+  // are ignored; a result older than the current step is carried forward
+  // by each particle's own motion since the snapshot.
+  std::vector<EventInput> prepare_event(const area::AreaDecision& decision) const;
+  std::vector<tsbi::Outcome> evaluate(const EventInput& input) const;
+  void apply_event(const area::AreaDecision& decision, const std::vector<EventInput>& inputs,
+                   const std::vector<std::vector<tsbi::Outcome>>& outcomes);
+  // Step 5, TLCA: when a hypothesis dominates, the others are dropped and
+  // the shared history forgotten at once; the job says which closures to
+  // fine-align (align() is const and thread-safe), apply_alignment fuses
+  // them into the arcs of every surviving hypothesis (all descend from the
+  // accepted one).
+  std::optional<AlignmentJob> accept_if_dominant();
+  std::vector<tlca::ClosureReport> align(const AlignmentJob& job) const;
+  void apply_alignment(const AlignmentJob& job, const std::vector<tlca::ClosureReport>& reports);
+
+  uint64_t steps_processed() const { return stats_.steps; }
 
   const std::vector<Hypothesis>& hypotheses() const { return hyps_; }
   // Normalised probabilities, in the order of hypotheses().
@@ -112,15 +174,17 @@ class HybridFilter {
  private:
   struct KeyframeRecord {
     uint64_t step = 0;
-    LaserScan scan;
+    // Shared, so a snapshot (EventInput) keeps the scans it points to
+    // alive and in place while this table grows.
+    std::shared_ptr<const LaserScan> scan;
   };
   void start(const LogStep& step);
-  void add_keyframe(const LogStep& step);
-  void on_new_area(const area::AreaDecision& decision, const LogStep& step);
+  std::optional<area::Keyframe> keyframe_due(const LogStep& step);
   std::vector<Hypothesis> branch(Hypothesis parent, const area::AreaDecision& decision,
-                                 const LogStep& step);
+                                 const EventInput& input,
+                                 const std::vector<tsbi::Outcome>& outcomes);
   void normalise_and_prune();
-  void accept_if_dominant();
+  void forget_shared_history();
 
   HmtOptions opt_;
   std::shared_ptr<metric_slam::WorkerPool> pool_;
@@ -132,6 +196,7 @@ class HybridFilter {
   bool has_keyframe_ = false;
   Pose2D last_keyframe_pose_;  // in the AAM frame
   uint64_t step_ = 0;          // index of the step being processed
+  double time_ = 0.0;          // its timestamp
   std::vector<TransitionEvent> transitions_;
   std::vector<AcceptanceEvent> acceptances_;
   std::vector<topology::PathEntry> accepted_path_;

@@ -64,9 +64,17 @@ struct ClosureReport {
   double correction_rad = 0.0;
 };
 
-// Fine-aligns the two areas' archived grids (when both exist and the option
-// is on) and rewrites the arc from..to as arc_before (+) the aligned
-// measurement (or TSBI's, when alignment failed).
+// The two halves of accept_closure, so the costly one can run on its own
+// thread (the framework's TLCA process) over a snapshot of the map:
+// align_closure fine-aligns the two areas' archived grids (when both exist
+// and the option is on) and says which measurement to use (the aligned one,
+// or TSBI's when alignment failed); apply_closure rewrites the arc from..to
+// as arc_before (+) that measurement.
+ClosureReport align_closure(const topology::HmtMap& map, const ClosureRecord& closure,
+                            const TlcaOptions& options);
+void apply_closure(topology::HmtMap& map, const ClosureReport& report);
+
+// align_closure then apply_closure on the same map.
 ClosureReport accept_closure(topology::HmtMap& map, const ClosureRecord& closure,
                              const TlcaOptions& options);
 
