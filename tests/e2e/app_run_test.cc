@@ -32,7 +32,9 @@ Pose2D reference_final_pose() {
 
 TEST(AppRun, MalagaOneLoopMatchesIndependentReference) {
   const std::string dir = temp_dir("malaga");
-  const AppResult r = run_app("run --config config/default.ini --quiet --out '" + dir + "/out'", dir);
+  // The default: the five concurrent processes, deterministic mode; RTL
+  // probed 200 times a second.
+  const AppResult r = run_app("run --config config/default.ini --quiet --set framework.rtl_probe_hz=200 --out '" + dir + "/out'", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("map image: "), std::string::npos) << r.out;
 
@@ -54,10 +56,11 @@ TEST(AppRun, MalagaOneLoopMatchesIndependentReference) {
   // The HMT outputs, and the loop closed by inference when the robot comes
   // back to its start.
   for (const char* f : {"map_topology.png", "hmt_map.bin", "topology.json", "topology.dot",
-                        "topological_pmf.csv", "tsbi_events.csv", "memory.csv",
-                        "areas/area_1.png"})
+                        "topological_pmf.csv", "tsbi_events.csv", "memory.csv", "ess.csv",
+                        "process_times.csv", "rtl.csv", "areas/area_1.png"})
     EXPECT_TRUE(fs::exists(dir + "/out/" + f)) << f;
   expect_loop_closed_into_area_1(dir + "/out", 3);
+  expect_rtl_answered_during_a_long_step(dir + "/out/rtl.csv", 20.0);
 }
 
 TEST(AppRun, EdmontonClosesItsLoop) {
@@ -86,8 +89,16 @@ TEST(AppRun, SameSeedSameBytesWhateverTheThreads) {
   const AppResult b = run_app(base + "--set metric_slam.threads=2 --out '" + dir + "/b'", dir);
   ASSERT_EQ(a.exit_code, 0) << a.err;
   ASSERT_EQ(b.exit_code, 0) << b.err;
-  for (const char* f : {"trajectory.tum", "map.png", "map.pgm", "map.yaml"})
+  // The same run again: the concurrent pipeline's thread timing differs,
+  // the outputs do not.
+  const AppResult a2 = run_app(base + "--set metric_slam.threads=1 --out '" + dir + "/a2'", dir);
+  ASSERT_EQ(a2.exit_code, 0) << a2.err;
+  for (const char* f : {"trajectory.tum", "map.png", "map.pgm", "map.yaml", "hmt_map.bin",
+                        "topology.json", "tsbi_events.csv", "topological_pmf.csv", "ess.csv"}) {
     EXPECT_EQ(slurp(dir + "/a/" + f), slurp(dir + "/b/" + f)) << f;
+    EXPECT_EQ(slurp(dir + "/a/" + f), slurp(dir + "/a2/" + f)) << f;
+  }
+  EXPECT_NE(slurp(dir + "/a/tsbi_events.csv").find("\n"), std::string::npos);
   // A different seed gives a different run (the check above is not vacuous).
   const AppResult c = run_app(base + "--set metric_slam.seed=9 --out '" + dir + "/c'", dir);
   ASSERT_EQ(c.exit_code, 0) << c.err;

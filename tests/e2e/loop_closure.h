@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -73,6 +74,34 @@ inline void expect_loop_closed_into_area_1(const std::string& out, int from_area
 
   const auto summary = nlohmann::json::parse(slurp(out + "/summary.json"));
   EXPECT_GE(summary["loop_closures_accepted"].get<int>(), 1);
+}
+
+// rtl.csv (framework.rtl_probe_hz > 0): some answer of real-time
+// localization came while metric SLAM was still on a step that had been
+// running for at least `long_ms` (a step with a new-area event waits for
+// the area abstraction and TSBI), and it was valid.
+inline void expect_rtl_answered_during_a_long_step(const std::string& csv, double long_ms) {
+  std::ifstream f(csv);
+  ASSERT_TRUE(f) << csv;
+  std::string line;
+  std::getline(f, line);
+  ASSERT_EQ(line.rfind("wall_s,latency_ms,metric_busy,busy_step,busy_for_ms,answered_during_step,"
+                       "step_running_ms,valid,", 0), 0u) << line;
+  size_t rows = 0, during_long = 0;
+  double longest = 0.0;
+  while (std::getline(f, line)) {
+    std::vector<std::string> c;
+    std::stringstream ss(line);
+    for (std::string x; std::getline(ss, x, ',');) c.push_back(x);
+    ASSERT_GE(c.size(), 8u) << line;
+    ++rows;
+    const bool during = c[5] == "1", valid = c[7] == "1";
+    const double running = std::stod(c[6]);
+    if (during && valid && running >= long_ms) ++during_long;
+    longest = std::max(longest, running);
+  }
+  EXPECT_GT(rows, 10u);
+  EXPECT_GT(during_long, 0u) << "longest step seen running: " << longest << " ms";
 }
 
 }  // namespace hmt::e2e

@@ -259,6 +259,7 @@ void HmtSystem::record_step(uint64_t index, double time, bool sample_memory) {
   topo.transitions = filter_.transitions().size();
   topo.closures_accepted = filter_.stats().loop_closures_accepted;
   topo.best_areas = best.map.area_count();
+  t.areas = topo.best_areas;
   traces_.push_back(std::move(t));
   topo_layer_.publish(std::move(topo));
   metric_layer_.end_step(e);

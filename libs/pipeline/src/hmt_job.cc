@@ -1,6 +1,8 @@
 #include "hmt/pipeline/hmt_job.h"
 
 #include <chrono>
+#include <memory>
+#include <thread>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -13,9 +15,10 @@
 #include "hmt/global_map/global_poses.h"
 #include "hmt/global_map/overlay.h"
 #include "hmt/grid/map_export.h"
-#include "hmt/hybrid/hybrid_filter.h"
+#include "hmt/framework/hmt_system.h"
 #include "hmt/io/tum.h"
 #include "hmt/pipeline/hmt_outputs.h"
+#include "hmt/pipeline/rtl_probe.h"
 #include "hmt/topology/topology_file.h"
 
 namespace hmt::pipeline {
@@ -54,34 +57,37 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
 
   size_t n = log.steps.size();
   if (opt.input.max_steps > 0) n = std::min(n, static_cast<size_t>(opt.input.max_steps));
-  hybrid::HybridFilter filter(opt.hmt());
+  if (n == 0) throw InputError(log.source + ": the log has no scans");
+  framework::HmtSystem system(opt.hmt(), opt.framework);
   Progress progress("scans", n);
   progress.set_enabled(show_progress);
-  std::vector<PmfRow> pmf;
-  std::ostringstream memory_csv;
-  memory_csv << "step,time,peak_rss_mb,map_memory_mb,hypotheses,areas\n";
-  size_t peak_map_bytes = 0;
-  char extra[96];
+  system.start();
+  std::unique_ptr<RtlProbe> probe;
+  if (opt.framework.rtl_probe_hz > 0) probe = std::make_unique<RtlProbe>(system, opt.framework.rtl_probe_hz);
+  // Live mode replays the log at its own pace (scaled), as the robot sensed it.
+  const bool paced = opt.framework.mode == framework::Mode::kLive && opt.framework.live_speed > 0;
+  const auto replay_start = std::chrono::steady_clock::now();
+  char extra[128];
   for (size_t i = 0; i < n; ++i) {
-    filter.process(log.steps[i]);
-    for (const auto& [area, p] : filter.position_pmf())
-      pmf.push_back({i, log.steps[i].timestamp, area, p});
-    if (i % 50 == 0 || i + 1 == n) {
-      const size_t bytes = filter.map_memory_bytes();
-      peak_map_bytes = std::max(peak_map_bytes, bytes);
-      char line[160];
-      std::snprintf(line, sizeof line, "%zu,%.6f,%.3f,%.3f,%zu,%zu\n", i,
-                    log.steps[i].timestamp, peak_rss_bytes() / kMB, bytes / kMB,
-                    filter.hypotheses().size(), filter.best().map.area_count());
-      memory_csv << line;
-    }
-    std::snprintf(extra, sizeof extra, "areas %zu  hypotheses %zu  closures %zu",
-                  filter.best().map.area_count(), filter.hypotheses().size(),
-                  filter.stats().loop_closures_accepted);
-    progress.update(i + 1, extra);
+    if (paced)
+      std::this_thread::sleep_until(
+          replay_start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                             std::chrono::duration<double>((log.steps[i].timestamp -
+                                                            log.steps[0].timestamp) /
+                                                           opt.framework.live_speed)));
+    system.feed(log.steps[i]);
+    const framework::MetricEstimate e = system.metric_layer().estimate();
+    const framework::TopologySummary topo = system.topological_layer().summary();
+    std::snprintf(extra, sizeof extra, "areas %zu  hypotheses %zu  closures %zu  ESS %.0f",
+                  topo.best_areas, topo.hypotheses.size(), topo.closures_accepted, e.ess);
+    progress.update(e.valid ? e.step + 1 : 0, extra);
   }
+  system.finish();
+  if (probe) probe->stop();
   progress.finish();
-  if (n == 0) throw InputError(log.source + ": the log has no scans");
+  const hybrid::HybridFilter& filter = system.filter();
+  size_t peak_map_bytes = 0;
+  for (const auto& t : system.traces()) peak_map_bytes = std::max(peak_map_bytes, t.map_memory_bytes);
 
   // The global map of the most probable hypothesis: area poses by least
   // squares over every arc (002 Sec. IV-C), the shortest-path tree as the
@@ -130,9 +136,12 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   topology::save_topology(out_dir + "/hmt_map.bin", map, {filter.best().topo});
   write_topology_json(out_dir + "/topology.json", map, poses);
   write_topology_dot(out_dir + "/topology.dot", map);
-  write_pmf_csv(out_dir + "/topological_pmf.csv", pmf);
+  write_pmf_csv(out_dir + "/topological_pmf.csv", system.traces());
+  write_ess_csv(out_dir + "/ess.csv", system.traces());
+  write_memory_csv(out_dir + "/memory.csv", system.traces());
+  write_process_times_csv(out_dir + "/process_times.csv", system.times(), system.traces());
   write_tsbi_events_csv(out_dir + "/tsbi_events.csv", filter.transitions());
-  write_text_atomically(out_dir + "/memory.csv", memory_csv.str());
+  if (probe) write_rtl_csv(out_dir + "/rtl.csv", probe->samples());
 
   sum.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   sum.peak_rss_bytes = peak_rss_bytes();
@@ -155,6 +164,19 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   j["max_hypotheses_alive"] = st.max_hypotheses_alive;
   j["hypotheses_at_end"] = filter.hypotheses().size();
   j["forgotten_path_entries"] = st.forgotten_path_entries;
+  j["framework_mode"] =
+      opt.framework.mode == framework::Mode::kLive ? "live" : "deterministic";
+  {
+    // Per-process totals (s): where the time went (the threads overlap).
+    const auto& pt = system.times();
+    auto total = [](const std::vector<double>& v) {
+      double t = 0.0;
+      for (double x : v) t += x;
+      return t / 1000.0;
+    };
+    j["process_time_s"] = {{"metric_slam", total(pt.metric_slam)}, {"aam", total(pt.aam)},
+                           {"tsbi", total(pt.tsbi)}, {"tlca", total(pt.tlca)}};
+  }
   j["global_poses"] = {{"method", pose_method},
                        {"iterations", report.iterations},
                        {"initial_chi2", report.initial_chi2},

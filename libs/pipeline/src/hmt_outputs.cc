@@ -23,12 +23,48 @@ nlohmann::json cov_json(const Eigen::Matrix3d& c) {
 
 }  // namespace
 
-void write_pmf_csv(const std::string& path, const std::vector<PmfRow>& rows) {
+void write_pmf_csv(const std::string& path, const std::vector<framework::StepTrace>& traces) {
   std::ostringstream o;
   o << "step,time,area,probability\n";
-  for (const PmfRow& r : rows)
-    o << r.step << ',' << fmt("%.6f", r.time) << ',' << r.area << ','
-      << fmt("%.6g", r.probability) << '\n';
+  for (const auto& t : traces)
+    for (const auto& [area, p] : t.pmf)
+      o << t.step << ',' << fmt("%.6f", t.time) << ',' << area << ',' << fmt("%.6g", p) << '\n';
+  write_text_atomically(path, o.str());
+}
+
+void write_ess_csv(const std::string& path, const std::vector<framework::StepTrace>& traces) {
+  std::ostringstream o;
+  o << "step,time,hypothesis,probability,area,ess,particles\n";
+  for (const auto& t : traces)
+    for (const auto& h : t.hypotheses)
+      o << t.step << ',' << fmt("%.6f", t.time) << ',' << h.id << ','
+        << fmt("%.6g", h.probability) << ',' << h.area << ',' << fmt("%.4f", h.ess) << ','
+        << h.particles << '\n';
+  write_text_atomically(path, o.str());
+}
+
+void write_memory_csv(const std::string& path, const std::vector<framework::StepTrace>& traces) {
+  constexpr double kMB = 1024.0 * 1024.0;
+  std::ostringstream o;
+  o << "step,time,peak_rss_mb,map_memory_mb,hypotheses,areas\n";
+  for (const auto& t : traces) {
+    if (t.map_memory_bytes == 0) continue;  // not sampled
+    o << t.step << ',' << fmt("%.6f", t.time) << ',' << fmt("%.3f", t.peak_rss_bytes / kMB)
+      << ',' << fmt("%.3f", t.map_memory_bytes / kMB) << ',' << t.hypotheses.size() << ','
+      << t.areas << '\n';
+  }
+  write_text_atomically(path, o.str());
+}
+
+void write_process_times_csv(const std::string& path, const framework::ProcessTimes& times,
+                             const std::vector<framework::StepTrace>& traces) {
+  auto at = [](const std::vector<double>& v, size_t i) { return i < v.size() ? v[i] : 0.0; };
+  std::ostringstream o;
+  o << "step,time,metric_slam_ms,aam_ms,tsbi_ms,tlca_ms\n";
+  for (size_t i = 0; i < traces.size(); ++i)
+    o << traces[i].step << ',' << fmt("%.6f", traces[i].time) << ','
+      << fmt("%.4f", at(times.metric_slam, i)) << ',' << fmt("%.4f", at(times.aam, i)) << ','
+      << fmt("%.4f", at(times.tsbi, i)) << ',' << fmt("%.4f", at(times.tlca, i)) << '\n';
   write_text_atomically(path, o.str());
 }
 

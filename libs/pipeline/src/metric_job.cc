@@ -41,6 +41,7 @@ JobOptions load_job_options(Config& cfg, const std::string& config_dir) {
   o.tsbi.load(cfg, "tsbi");
   o.tlca.load(cfg, "tlca");
   o.hybrid.load(cfg, "hmt");
+  o.framework.load(cfg, "framework");
   cfg.check_all_used();
   return o;
 }

@@ -23,7 +23,13 @@ struct FrameworkOptions {
   Mode mode = Mode::kDeterministic;
   // Messages each process's inbox holds before its producer waits.
   int inbox_capacity = 64;
-  // Reads [framework] mode = deterministic | live, inbox_capacity.
+  // Live mode on a recorded log: playback speed against the log's clock
+  // (1 = real time, as the robot recorded it; 0 = as fast as it is read).
+  double live_speed = 1.0;
+  // Queries to RTL per second during a run, logged to rtl.csv (0 = none).
+  double rtl_probe_hz = 0.0;
+  // Reads [framework] mode = deterministic | live, inbox_capacity,
+  // live_speed, rtl_probe_hz.
   void load(Config& cfg, const std::string& section = "framework");
 };
 

@@ -55,6 +55,7 @@ struct StepTrace {
   double time = 0.0;
   std::map<topology::AreaId, double> pmf;  // 002 Eq. 14
   std::vector<HypothesisTrace> hypotheses;
+  size_t areas = 0;  // in the most probable hypothesis's map
   // Sampled every memory_every steps and at the end (0 = not sampled).
   size_t map_memory_bytes = 0;
   size_t peak_rss_bytes = 0;

@@ -6,20 +6,24 @@
 #include <string>
 #include <vector>
 
+#include "hmt/framework/hmt_system.h"
 #include "hmt/global_map/global_poses.h"
 #include "hmt/hybrid/hybrid_filter.h"
 #include "hmt/topology/hmt_map.h"
 
 namespace hmt::pipeline {
 
-// One row per step and area with a particle there: step,time,area,probability.
-struct PmfRow {
-  uint64_t step;
-  double time;
-  topology::AreaId area;
-  double probability;
-};
-void write_pmf_csv(const std::string& path, const std::vector<PmfRow>& rows);
+// From metric SLAM's trace of every step (framework::StepTrace):
+//  topological_pmf.csv  step,time,area,probability (002 Eq. 14, Fig. 10)
+//  ess.csv              step,time,hypothesis,probability,area,ess,particles
+//  memory.csv           step,time,peak_rss_mb,map_memory_mb,hypotheses,areas
+//                       (the sampled steps; Fig. 9e)
+void write_pmf_csv(const std::string& path, const std::vector<framework::StepTrace>& traces);
+void write_ess_csv(const std::string& path, const std::vector<framework::StepTrace>& traces);
+void write_memory_csv(const std::string& path, const std::vector<framework::StepTrace>& traces);
+// process_times.csv: step,time,metric_slam_ms,aam_ms,tsbi_ms,tlca_ms (Fig. 9c).
+void write_process_times_csv(const std::string& path, const framework::ProcessTimes& times,
+                             const std::vector<framework::StepTrace>& traces);
 
 void write_tsbi_events_csv(const std::string& path,
                            const std::vector<hybrid::TransitionEvent>& events);

@@ -8,6 +8,7 @@
 #include "hmt/common/config.h"
 #include "hmt/common/sensor_data.h"
 #include "hmt/area/area_options.h"
+#include "hmt/framework/framework_options.h"
 #include "hmt/grouping/grouping_options.h"
 #include "hmt/hybrid/hybrid_options.h"
 #include "hmt/metric_slam/rbpf_options.h"
@@ -36,6 +37,7 @@ struct JobOptions {
   tsbi::TsbiOptions tsbi;
   tlca::TlcaOptions tlca;
   hybrid::HybridOptions hybrid;
+  framework::FrameworkOptions framework;
   // The options of the HMT-SLAM estimator, gathered from the above.
   hybrid::HmtOptions hmt() const { return {rbpf, area, tsbi, tlca, hybrid}; }
 };
