@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,14 +15,16 @@
 #include "hmt/io/rawlog.h"
 #include "hmt/pipeline/hmt_job.h"
 #include "hmt/pipeline/metric_job.h"
+#include "hmt/topology/topology_file.h"
 
 namespace {
 
-// `hybrid`: the HMT-SLAM job (run); otherwise the metric RBPF over the whole
-// log as one map (metric), the global-RBPF baseline.
+// `hybrid`: the HMT-SLAM job (run, or resume when `resume_map` names a saved
+// run's hmt_map.bin); otherwise the metric RBPF over the whole log as one map
+// (metric), the global-RBPF baseline.
 int run(const std::string& config_path, const std::string& input,
         const std::string& out_dir, const std::vector<std::string>& sets,
-        bool quiet, bool hybrid) {
+        bool quiet, bool hybrid, const std::string& resume_map = "") {
   hmt::Config cfg = hmt::Config::from_file(config_path);
   for (const auto& s : sets) cfg.apply_override(s);
   const std::string cfg_dir = std::filesystem::path(config_path).parent_path().string();
@@ -30,11 +33,15 @@ int run(const std::string& config_path, const std::string& input,
   if (opt.input.log.empty())
     throw hmt::UsageError("no input log: give --input or set [input] log in " + config_path);
   std::fprintf(stderr, "hmt-slam: reading %s\n", opt.input.log.c_str());
-  const hmt::Log log = hmt::io::read_log(opt.input.log);
+  // Read before the log: a bad map file fails at once.
+  std::unique_ptr<hmt::topology::Session> session;
+  if (!resume_map.empty())
+    session = std::make_unique<hmt::topology::Session>(hmt::topology::load_session(resume_map));
+  const hmt::Log log = opt.input.select(hmt::io::read_log(opt.input.log));
   std::fprintf(stderr, "hmt-slam: %zu scans; %d particles\n", log.steps.size(),
                opt.rbpf.particles);
   if (hybrid) {
-    const auto sum = hmt::pipeline::run_hmt_job(opt, log, cfg, out_dir, !quiet);
+    const auto sum = hmt::pipeline::run_hmt_job(opt, log, cfg, out_dir, !quiet, session.get());
     std::printf("processed %zu scans in %.2f s (peak memory %.1f MB)\n", sum.scans,
                 sum.wall_time_s, sum.peak_rss_bytes / (1024.0 * 1024.0));
     std::printf("areas: %zu, arcs: %zu, loop closures accepted: %zu\n", sum.areas, sum.arcs,
@@ -83,7 +90,12 @@ int main(int argc, char** argv) {
       "run", "HMT-SLAM on a whole log: global map, topology, trajectory, PMF");
   auto* metric_cmd = app.add_subcommand(
       "metric", "the metric RBPF alone over the whole log as one map (baseline)");
-  for (CLI::App* cmd : {run_cmd, metric_cmd}) {
+  std::string resume_map;
+  auto* resume_cmd = app.add_subcommand(
+      "resume", "continue a saved HMT-SLAM run (its hmt_map.bin) with more log");
+  resume_cmd->add_option("--map,-m", resume_map, "hmt_map.bin written by run or resume")
+      ->required();
+  for (CLI::App* cmd : {run_cmd, metric_cmd, resume_cmd}) {
     cmd->add_option("--config,-c", config, "INI configuration file")->required();
     cmd->add_option("--input,-i", input, "log (.rawlog, .log, .log.gz); overrides [input] log");
     cmd->add_option("--out,-o", out, "output folder")->capture_default_str();
@@ -107,6 +119,7 @@ int main(int argc, char** argv) {
   try {
     if (*run_cmd) return run(config, input, out, sets, quiet, true);
     if (*metric_cmd) return run(config, input, out, sets, quiet, false);
+    if (*resume_cmd) return run(config, input, out, sets, quiet, true, resume_map);
     if (*conv_cmd) return convert(conv_in, conv_out, format);
   } catch (const hmt::Error& e) {
     std::fprintf(stderr, "hmt-slam: error: %s\n", e.what());

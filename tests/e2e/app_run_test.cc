@@ -63,6 +63,46 @@ TEST(AppRun, MalagaOneLoopMatchesIndependentReference) {
   expect_rtl_answered_during_a_long_step(dir + "/out/rtl.csv", 20.0);
 }
 
+TEST(AppRun, ResumeContinuesASavedRunAndClosesTheLoop) {
+  const std::string dir = temp_dir("resume");
+  // The first 120 scans, saved; then the rest of the log from hmt_map.bin.
+  const AppResult a = run_app("run --config config/default.ini --quiet --set input.max_steps=120 --out '" + dir + "/first'", dir);
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const AppResult b = run_app("resume --config config/default.ini --quiet --map '" + dir +
+                                  "/first/hmt_map.bin' --set input.first_step=120 --out '" + dir + "/rest'",
+                              dir);
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const auto traj = io::read_tum(dir + "/rest/trajectory.tum");
+  ASSERT_EQ(traj.size(), 105u);
+  // It continues where the saved run stopped and ends where the whole run
+  // does (the independent reference), the loop closed after the resume.
+  const auto first = io::read_tum(dir + "/first/trajectory.tum");
+  const Pose2D d = traj.front().pose - first.back().pose;
+  EXPECT_LT(d.norm(), 1.0);  // one step of motion apart
+  const Pose2D ref = reference_final_pose(), got = traj.back().pose;
+  EXPECT_LT(std::hypot(got.x - ref.x, got.y - ref.y), 0.3)
+      << "final pose " << got.x << " " << got.y << " " << got.theta;
+  expect_loop_closed_into_area_1(dir + "/rest", 3);
+
+  // A damaged map file: a clear error, and the earlier outputs untouched.
+  const std::string bad = dir + "/bad.bin";
+  {
+    const std::string bytes = slurp(dir + "/first/hmt_map.bin");
+    std::ofstream(bad, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  }
+  const std::string before = slurp(dir + "/rest/trajectory.tum");
+  const AppResult c = run_app("resume --config config/default.ini --quiet --map '" + bad +
+                                  "' --set input.first_step=120 --out '" + dir + "/rest'",
+                              dir);
+  EXPECT_EQ(c.exit_code, 4) << c.err;
+  EXPECT_NE(c.err.find("bad.bin"), std::string::npos) << c.err;
+  EXPECT_NE(c.err.find("truncated"), std::string::npos) << c.err;
+  EXPECT_EQ(slurp(dir + "/rest/trajectory.tum"), before);
+  const AppResult m = run_app("resume --config config/default.ini --quiet --map '" + dir +
+                                  "/missing.bin' --out '" + dir + "/rest'", dir);
+  EXPECT_EQ(m.exit_code, 4) << m.err;
+}
+
 TEST(AppRun, EdmontonClosesItsLoop) {
   const std::string dir = temp_dir("edmonton_loop");
   const AppResult r = run_app("run --config config/edmonton.ini --quiet --out '" + dir + "/out'", dir);

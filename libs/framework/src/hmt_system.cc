@@ -53,6 +53,12 @@ HmtSystem::~HmtSystem() {
   rtl_.stop();
 }
 
+void HmtSystem::resume(const topology::Session& session) {
+  if (started_) throw Error(ExitCode::kInternal, "HmtSystem::resume after start()");
+  filter_.resume(session);
+  fed_ = session.steps;
+}
+
 void HmtSystem::start() {
   if (started_) return;
   started_ = true;

@@ -408,6 +408,49 @@ size_t HybridFilter::map_memory_bytes() const {
   return tiles.size() * sizeof(grid::Tile);
 }
 
+topology::Session HybridFilter::session() const {
+  topology::Session s;
+  s.steps = stats_.steps;
+  s.time = time_;
+  const std::vector<double> p = probabilities();
+  for (size_t i = 0; i < hyps_.size(); ++i) {
+    const Hypothesis& h = hyps_[i];
+    topology::SessionHypothesis sh;
+    sh.id = h.id;
+    sh.map = h.map;
+    sh.map.archive_map(h.current_area(), h.filter.best().map);
+    sh.topo = h.topo;
+    sh.topo.log_weight = std::log(p[i]);
+    sh.robot = h.filter.best().path.back();
+    sh.aam_from_area = h.aam_from_area;
+    s.hypotheses.push_back(std::move(sh));
+  }
+  return s;
+}
+
+void HybridFilter::resume(const topology::Session& s) {
+  if (!hyps_.empty() || stats_.steps != 0)
+    throw Error(ExitCode::kInternal, "resume() after the first step");
+  if (s.hypotheses.empty()) throw InputError("the saved run has no hypotheses");
+  stats_.steps = s.steps;
+  step_ = s.steps - 1;
+  time_ = s.time;
+  for (const topology::SessionHypothesis& sh : s.hypotheses) {
+    Hypothesis h{metric_slam::GridRbpf(opt_.rbpf, pool_)};
+    h.id = sh.id;
+    h.filter.reseed(mix_seed(opt_.rbpf.seed ^ mix_seed(h.id) ^ mix_seed(s.steps)));
+    h.map = sh.map;
+    h.topo = sh.topo;
+    // The particles' paths start at the saved run's last step.
+    h.area_start_step = s.steps - 1;
+    h.aam_from_area = sh.aam_from_area;
+    h.filter.restart(*h.map.area(h.current_area()).map, sh.robot);
+    next_hypothesis_id_ = std::max(next_hypothesis_id_, h.id + 1);
+    hyps_.push_back(std::move(h));
+  }
+  normalise_and_prune();
+}
+
 topology::HmtMap HybridFilter::final_map() const {
   const Hypothesis& h = best();
   topology::HmtMap m = h.map;

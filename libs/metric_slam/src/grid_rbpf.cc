@@ -299,6 +299,17 @@ void GridRbpf::load_area(const grid::OccupancyGrid& map,
   }
 }
 
+void GridRbpf::restart(const grid::OccupancyGrid& map, const Pose2D& pose) {
+  Particle p;
+  p.map = map;
+  p.pose = pose;
+  p.path.assign(1, pose);
+  p.last_insertion = pose;
+  p.inserted = true;
+  particles_.assign(static_cast<size_t>(opt_.particles), p);
+  pending_motion_ = Pose2D();
+}
+
 size_t GridRbpf::map_memory_bytes() const {
   std::unordered_set<const grid::Tile*> tiles;
   for (const auto& p : particles_)

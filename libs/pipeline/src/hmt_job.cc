@@ -26,19 +26,22 @@ namespace {
 
 constexpr double kMB = 1024.0 * 1024.0;
 
-// One pose per log step in the global frame: each area visit's poses
-// composed with its area's global pose (a later visit overrides the step
-// they share at the switch).
+// One pose per log step from `first` on (`steps` of them) in the global
+// frame: each area visit's poses composed with its area's global pose (a
+// later visit overrides the step they share at the switch).
 std::vector<Pose2D> global_trajectory(const std::vector<hybrid::TrajectorySegment>& segs,
-                                      const global_map::GlobalPoses& poses, size_t steps) {
+                                      const global_map::GlobalPoses& poses, uint64_t first,
+                                      size_t steps) {
   std::vector<Pose2D> out(steps);
   std::vector<char> set(steps, 0);
   for (const auto& s : segs) {
     auto it = poses.poses.find(s.area);
     if (it == poses.poses.end()) continue;
-    for (size_t k = 0; k < s.poses.size() && s.first_step + k < steps; ++k) {
-      out[s.first_step + k] = it->second.mean + s.poses[k];
-      set[s.first_step + k] = 1;
+    for (size_t k = 0; k < s.poses.size(); ++k) {
+      const uint64_t step = s.first_step + k;
+      if (step < first || step - first >= steps) continue;
+      out[step - first] = it->second.mean + s.poses[k];
+      set[step - first] = 1;
     }
   }
   for (size_t i = 1; i < steps; ++i)
@@ -49,7 +52,8 @@ std::vector<Pose2D> global_trajectory(const std::vector<hybrid::TrajectorySegmen
 }  // namespace
 
 HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& cfg,
-                          const std::string& out_dir, bool show_progress) {
+                          const std::string& out_dir, bool show_progress,
+                          const topology::Session* resume_from) {
   const auto t0 = std::chrono::steady_clock::now();
   make_directories(out_dir);
   // The configuration first: a run that fails later still says what it used.
@@ -59,6 +63,8 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   if (opt.input.max_steps > 0) n = std::min(n, static_cast<size_t>(opt.input.max_steps));
   if (n == 0) throw InputError(log.source + ": the log has no scans");
   framework::HmtSystem system(opt.hmt(), opt.framework);
+  const uint64_t first_step = resume_from ? resume_from->steps : 0;
+  if (resume_from) system.resume(*resume_from);
   Progress progress("scans", n);
   progress.set_enabled(show_progress);
   system.start();
@@ -80,7 +86,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
     const framework::TopologySummary topo = system.topological_layer().summary();
     std::snprintf(extra, sizeof extra, "areas %zu  hypotheses %zu  closures %zu  ESS %.0f",
                   topo.best_areas, topo.hypotheses.size(), topo.closures_accepted, e.ess);
-    progress.update(e.valid ? e.step + 1 : 0, extra);
+    progress.update(e.valid && e.step >= first_step ? e.step + 1 - first_step : 0, extra);
   }
   system.finish();
   if (probe) probe->stop();
@@ -104,7 +110,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
     poses = global_map::shortest_path_poses(map, 1);
     pose_method = "shortest_path";
   }
-  const std::vector<Pose2D> traj = global_trajectory(filter.final_trajectory(), poses, n);
+  const std::vector<Pose2D> traj = global_trajectory(filter.final_trajectory(), poses, first_step, n);
   std::vector<io::StampedPose> stamped;
   for (size_t i = 0; i < n; ++i) stamped.push_back({log.steps[i].timestamp, traj[i]});
 
@@ -133,7 +139,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
 
   // The file holds one HMT map: the most probable hypothesis's, with its
   // topological path (the other hypotheses' maps differ from it).
-  topology::save_topology(out_dir + "/hmt_map.bin", map, {filter.best().topo});
+  topology::save_session(out_dir + "/hmt_map.bin", filter.session());
   write_topology_json(out_dir + "/topology.json", map, poses);
   write_topology_dot(out_dir + "/topology.dot", map);
   write_pmf_csv(out_dir + "/topological_pmf.csv", system.traces());

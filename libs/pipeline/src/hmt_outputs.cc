@@ -63,8 +63,10 @@ void write_process_times_csv(const std::string& path, const framework::ProcessTi
   o << "step,time,metric_slam_ms,aam_ms,tsbi_ms,tlca_ms\n";
   for (size_t i = 0; i < traces.size(); ++i)
     o << traces[i].step << ',' << fmt("%.6f", traces[i].time) << ','
-      << fmt("%.4f", at(times.metric_slam, i)) << ',' << fmt("%.4f", at(times.aam, i)) << ','
-      << fmt("%.4f", at(times.tsbi, i)) << ',' << fmt("%.4f", at(times.tlca, i)) << '\n';
+      << fmt("%.4f", at(times.metric_slam, traces[i].step)) << ','
+      << fmt("%.4f", at(times.aam, traces[i].step)) << ','
+      << fmt("%.4f", at(times.tsbi, traces[i].step)) << ','
+      << fmt("%.4f", at(times.tlca, traces[i].step)) << '\n';
   write_text_atomically(path, o.str());
 }
 

@@ -18,10 +18,20 @@ namespace fs = std::filesystem;
 
 void InputOptions::load(Config& cfg, const std::string& config_dir) {
   log = cfg.get_string("input", "log", log);
+  first_step = cfg.get_int("input", "first_step", first_step);
   max_steps = cfg.get_int("input", "max_steps", max_steps);
+  require(first_step >= 0, "input", "first_step", ">= 0");
   require(max_steps >= 0, "input", "max_steps", ">= 0");
   if (!log.empty() && fs::path(log).is_relative() && !config_dir.empty())
     log = (fs::path(config_dir) / log).lexically_normal().string();
+}
+
+Log InputOptions::select(Log log) const {
+  const size_t first = std::min(log.steps.size(), static_cast<size_t>(first_step));
+  log.steps.erase(log.steps.begin(), log.steps.begin() + static_cast<std::ptrdiff_t>(first));
+  if (max_steps > 0 && log.steps.size() > static_cast<size_t>(max_steps))
+    log.steps.resize(static_cast<size_t>(max_steps));
+  return log;
 }
 
 void OutputOptions::load(Config& cfg) {

@@ -456,11 +456,10 @@ uint64_t get_u64(const std::string& b, size_t at) {
   return v;
 }
 
-}  // namespace
-
-std::string encode_topology(
-    const HmtMap& map, const std::vector<TopologicalHypothesis>& hypotheses) {
-  const std::string payload = encode_payload(map, hypotheses);
+// The file around a payload: header (magic, version, sizes, checksums) and
+// the deflated payload. Shared by topology and session files.
+std::string wrap(const char (&magic)[8], uint32_t version, const std::string& payload,
+                 const char* who) {
   uLongf stored = compressBound(payload.size());
   std::string file(kTopologyHeaderSize + stored, '\0');
   const int rc =
@@ -468,13 +467,13 @@ std::string encode_topology(
                 reinterpret_cast<const Bytef*>(payload.data()), payload.size(),
                 Z_DEFAULT_COMPRESSION);
   if (rc != Z_OK)
-    throw std::runtime_error("encode_topology: zlib compression failed (" +
+    throw std::runtime_error(std::string(who) + ": zlib compression failed (" +
                              std::to_string(rc) + ")");
   file.resize(kTopologyHeaderSize + stored);
 
   Writer h;
-  h.bytes().assign(kTopologyMagic, sizeof kTopologyMagic);
-  h.u32(kTopologyFormatVersion);
+  h.bytes().assign(magic, sizeof magic);
+  h.u32(version);
   h.u32(0);
   h.u64(payload.size());
   h.u64(stored);
@@ -484,22 +483,23 @@ std::string encode_topology(
   return file;
 }
 
-TopologySnapshot decode_topology(const std::string& bytes,
-                                 const std::string& origin) {
-  const std::string name = "topology file '" + origin + "'";
+// The payload of a file written by wrap(), after every check; `name` and
+// `kind` say what the file is in error messages.
+std::string unwrap(const std::string& bytes, const char (&magic)[8], uint32_t expected_version,
+                   const std::string& name, const char* kind) {
   if (bytes.empty()) throw InputError(name + " is empty");
-  const size_t magic = std::min(bytes.size(), sizeof kTopologyMagic);
-  if (std::memcmp(bytes.data(), kTopologyMagic, magic) != 0)
-    throw InputError(name + " is not an HMT topology file (bad magic)");
+  const size_t m = std::min(bytes.size(), sizeof magic);
+  if (std::memcmp(bytes.data(), magic, m) != 0)
+    throw InputError(name + " is not " + kind + " (bad magic)");
   if (bytes.size() < kTopologyHeaderSize)
     throw InputError(name + " is truncated: " + std::to_string(bytes.size()) +
                      " bytes, shorter than its " +
                      std::to_string(kTopologyHeaderSize) + "-byte header");
   const uint32_t version = get_u32(bytes, 8);
-  if (version != kTopologyFormatVersion)
+  if (version != expected_version)
     throw InputError(name + " has format version " + std::to_string(version) +
                      "; this build reads version " +
-                     std::to_string(kTopologyFormatVersion));
+                     std::to_string(expected_version));
   if (crc_of(bytes.data(), 36) != get_u32(bytes, 36))
     throw InputError(name + " is corrupt: header checksum mismatch");
   if (get_u32(bytes, 12) != 0)
@@ -529,25 +529,105 @@ TopologySnapshot decode_topology(const std::string& bytes,
                      std::string(rc == Z_OK ? "wrong size" : zError(rc)) + ")");
   if (crc_of(payload.data(), payload.size()) != get_u32(bytes, 32))
     throw InputError(name + " is corrupt: map data checksum mismatch");
-  return decode_payload(payload, origin);
+  return payload;
 }
 
-void save_topology(const std::string& path, const HmtMap& map,
-                   const std::vector<TopologicalHypothesis>& hypotheses) {
-  const std::string bytes = encode_topology(map, hypotheses);
+std::string read_whole_file(const std::string& path, const char* kind) {
+  require_readable_file(path, kind);
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)),
+                    std::istreambuf_iterator<char>());
+  if (in.bad())
+    throw InputError(std::string(kind) + " '" + path + "' could not be read");
+  return bytes;
+}
+
+void write_whole_file(const std::string& path, const std::string& bytes) {
   write_file_atomically(path, [&](std::ostream& os) {
     os.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   });
 }
 
+}  // namespace
+
+std::string encode_topology(
+    const HmtMap& map, const std::vector<TopologicalHypothesis>& hypotheses) {
+  return wrap(kTopologyMagic, kTopologyFormatVersion, encode_payload(map, hypotheses),
+              "encode_topology");
+}
+
+TopologySnapshot decode_topology(const std::string& bytes,
+                                 const std::string& origin) {
+  return decode_payload(unwrap(bytes, kTopologyMagic, kTopologyFormatVersion,
+                               "topology file '" + origin + "'", "an HMT topology file"),
+                        origin);
+}
+
+void save_topology(const std::string& path, const HmtMap& map,
+                   const std::vector<TopologicalHypothesis>& hypotheses) {
+  write_whole_file(path, encode_topology(map, hypotheses));
+}
+
 TopologySnapshot load_topology(const std::string& path) {
-  require_readable_file(path, "topology file");
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)),
-                    std::istreambuf_iterator<char>());
-  if (in.bad())
-    throw InputError("topology file '" + path + "' could not be read");
-  return decode_topology(bytes, path);
+  return decode_topology(read_whole_file(path, "topology file"), path);
+}
+
+// ------------------------------------------------------------------ session
+
+std::string encode_session(const Session& session) {
+  Writer w;
+  w.u64(session.steps);
+  w.f64(session.time);
+  w.count(session.hypotheses.size(), "hypotheses");
+  for (const SessionHypothesis& h : session.hypotheses) {
+    w.u32(h.id);
+    w.pose(h.robot);
+    w.pose(h.aam_from_area);
+    const std::string p = encode_payload(h.map, {h.topo});
+    w.u64(p.size());
+    w.bytes() += p;
+  }
+  return wrap(kSessionMagic, kSessionFormatVersion, w.bytes(), "encode_session");
+}
+
+Session decode_session(const std::string& bytes, const std::string& origin) {
+  const std::string payload = unwrap(bytes, kSessionMagic, kSessionFormatVersion,
+                                     "HMT map file '" + origin + "'", "an HMT map file");
+  Reader r(payload, origin);
+  Session s;
+  s.steps = r.u64("steps");
+  s.time = r.f64("time");
+  if (s.steps == 0) r.fail("no steps processed");
+  const size_t n = r.count(4 + 48 + 8, "hypotheses");
+  if (n == 0) r.fail("no hypotheses");
+  for (size_t i = 0; i < n; ++i) {
+    SessionHypothesis h;
+    h.id = r.u32("hypothesis id");
+    if (i > 0 && h.id <= s.hypotheses.back().id) r.fail("hypothesis ids not ascending");
+    h.robot = r.pose("robot pose");
+    h.aam_from_area = r.pose("area abstraction frame");
+    if (!finite(h.robot) || !finite(h.aam_from_area)) r.fail("a pose is not finite");
+    const uint64_t size = r.u64("hypothesis size");
+    if (size > payload.size()) r.fail("hypothesis size exceeds the remaining data");
+    TopologySnapshot t =
+        decode_payload(std::string(r.take(size, "hypothesis"), size), origin);
+    if (t.hypotheses.size() != 1) r.fail("a hypothesis without exactly one path");
+    h.map = std::move(t.map);
+    h.topo = std::move(t.hypotheses[0]);
+    if (!h.map.area(h.topo.current_area()).map)
+      r.fail("hypothesis " + std::to_string(h.id) + ": its current area has no map");
+    s.hypotheses.push_back(std::move(h));
+  }
+  if (!r.at_end()) r.fail("unexpected data after the hypotheses");
+  return s;
+}
+
+void save_session(const std::string& path, const Session& session) {
+  write_whole_file(path, encode_session(session));
+}
+
+Session load_session(const std::string& path) {
+  return decode_session(read_whole_file(path, "HMT map file"), path);
 }
 
 }  // namespace hmt::topology

@@ -485,3 +485,83 @@ TEST(TopologyFile, FailedSavesLeaveTheEarlierFileIntact) {
 
 }  // namespace
 }  // namespace hmt::topology
+
+namespace hmt::topology {
+namespace {
+
+// Two hypotheses of one run, as hmt_map.bin holds them: each its own map
+// (its current area archived) and path.
+Session sample_session() {
+  const Fixture f = sample_topology();
+  Session s;
+  s.steps = 300;
+  s.time = 1.6e9 + 12.5;
+  SessionHypothesis a;
+  a.id = 3;
+  a.map = f.map;
+  a.map.archive_map(2, grid::OccupancyGrid(0.05));
+  a.topo = f.hypotheses[0];
+  a.robot = Pose2D(1.25, -0.5, 0.3);
+  a.aam_from_area = Pose2D(10.0, 2.0, -1.0);
+  SessionHypothesis b = a;
+  b.id = 8;
+  b.topo = f.hypotheses[1];
+  b.topo.log_weight = -3.0;
+  b.robot = Pose2D(-2.0, 0.5, 3.0);
+  s.hypotheses = {a, b};
+  return s;
+}
+
+TEST(SessionFile, RoundTripRestoresEveryHypothesisExactly) {
+  TempDir dir;
+  const Session s = sample_session();
+  const std::string path = dir.file("hmt_map.bin");
+  save_session(path, s);
+  const Session got = load_session(path);
+  EXPECT_EQ(got.steps, s.steps);
+  EXPECT_EQ(bits(got.time), bits(s.time));
+  ASSERT_EQ(got.hypotheses.size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    SCOPED_TRACE("hypothesis " + std::to_string(i));
+    const SessionHypothesis& g = got.hypotheses[i];
+    const SessionHypothesis& w = s.hypotheses[i];
+    EXPECT_EQ(g.id, w.id);
+    expect_same_pose(g.robot, w.robot);
+    expect_same_pose(g.aam_from_area, w.aam_from_area);
+    EXPECT_EQ(g.topo.path, w.topo.path);
+    EXPECT_EQ(bits(g.topo.log_weight), bits(w.topo.log_weight));
+    EXPECT_EQ(g.map.area_ids(), w.map.area_ids());
+    EXPECT_EQ(g.map.arcs().size(), w.map.arcs().size());
+    EXPECT_EQ(g.map.area(0).map->logodds({0, 0}), w.map.area(0).map->logodds({0, 0}));
+  }
+  EXPECT_EQ(encode_session(got), read_bytes(path));
+}
+
+TEST(SessionFile, BadFilesAreInputErrorsNamingTheProblem) {
+  const Session s = sample_session();
+  const std::string bytes = encode_session(s);
+  auto expect_error = [](const std::string& b, const std::string& needle) {
+    try {
+      decode_session(b, "x.bin");
+      ADD_FAILURE() << "no error for " << needle;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  expect_error(bytes.substr(0, bytes.size() - 7), "truncated");
+  expect_error(bytes.substr(0, 20), "truncated");
+  expect_error("", "empty");
+  // A topology file is not a map file of a run.
+  const Fixture f = sample_topology();
+  expect_error(encode_topology(f.map, f.hypotheses), "not an HMT map file");
+  std::string flipped = bytes;
+  flipped[bytes.size() / 2] ^= 0x10;
+  expect_error(flipped, "corrupt");
+  // A hypothesis whose current area has no map cannot be continued.
+  Session no_map = s;
+  no_map.hypotheses[0].map = f.map;  // area 2 (current) not archived
+  expect_error(encode_session(no_map), "current area has no map");
+}
+
+}  // namespace
+}  // namespace hmt::topology

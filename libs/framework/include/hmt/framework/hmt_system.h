@@ -75,9 +75,13 @@ class HmtSystem {
   HmtSystem(const HmtSystem&) = delete;
   HmtSystem& operator=(const HmtSystem&) = delete;
 
+  // Continues a saved run (hybrid::HybridFilter::resume); before start().
+  // Steps are then numbered on from the saved run's.
+  void resume(const topology::Session& session);
   void start();
   // Hands one log step to RTL (its odometry) and to metric SLAM (waits while
-  // its inbox is full). Steps are numbered from 0 in feeding order.
+  // its inbox is full). Steps are numbered in feeding order, from 0 (or from
+  // the saved run's count after resume()).
   void feed(const LogStep& step);
   // No more steps: waits for every process to finish its work, applies the
   // outstanding results, joins the threads. Rethrows a process's failure.

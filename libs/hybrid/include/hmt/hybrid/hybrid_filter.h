@@ -48,6 +48,7 @@
 #include "hmt/area/online_partitioner.h"
 #include "hmt/hybrid/hybrid_options.h"
 #include "hmt/hybrid/hypothesis.h"
+#include "hmt/topology/topology_file.h"
 #include "hmt/tsbi/transition_model.h"
 
 namespace hmt::hybrid {
@@ -144,6 +145,17 @@ class HybridFilter {
   void apply_alignment(const AlignmentJob& job, const std::vector<tlca::ClosureReport>& reports);
 
   uint64_t steps_processed() const { return stats_.steps; }
+
+  // The state to continue from (hmt_map.bin): every hypothesis's map with
+  // its current area archived from its best particle, its path and log
+  // probability, and where its best particle is.
+  topology::Session session() const;
+  // Continues a saved run; call before the first step. Each hypothesis's
+  // particles restart at its saved robot pose in its current area's map;
+  // steps are numbered on from the saved run's; the area abstraction starts
+  // a fresh keyframe graph; closures not yet accepted when the run was
+  // saved stay in the arcs as TSBI measured them.
+  void resume(const topology::Session& session);
 
   const std::vector<Hypothesis>& hypotheses() const { return hyps_; }
   // Normalised probabilities, in the order of hypotheses().

@@ -102,6 +102,9 @@ class GridRbpf {
   // Re-enter a known area: every particle gets `map` (shared, not copied) and
   // the given pose in that map's frame (one per particle, or one for all).
   void load_area(const grid::OccupancyGrid& map, const std::vector<Pose2D>& poses);
+  // Continue a saved run: every particle at `pose` in `map` (shared), equal
+  // weights, as if the filter had just processed the saved run's last step.
+  void restart(const grid::OccupancyGrid& map, const Pose2D& pose);
 
   // Bytes of the distinct map tiles held by all particles together.
   size_t map_memory_bytes() const;

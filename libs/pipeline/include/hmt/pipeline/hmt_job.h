@@ -6,8 +6,9 @@
 //   map_topology.png              the same with area ids, arcs and 95%
 //                                 ellipses (x ellipse_scale)
 //   areas/area_<id>.png           each area's local map
-//   hmt_map.bin                   the most probable hypothesis's HMT map and
-//                                 topological path (topology::save_topology)
+//   hmt_map.bin                   every hypothesis's HMT map, path and robot
+//                                 pose: what `resume` continues from
+//                                 (topology::save_session)
 //   topology.json, topology.dot   areas (global pose, covariance), arcs
 //   trajectory.tum                the best path in global coordinates
 //   topological_pmf.csv           P(current area) at every step (Eq. 14)
@@ -20,6 +21,7 @@
 #include "hmt/common/config.h"
 #include "hmt/common/sensor_data.h"
 #include "hmt/pipeline/metric_job.h"
+#include "hmt/topology/topology_file.h"
 
 namespace hmt::pipeline {
 
@@ -34,7 +36,10 @@ struct HmtJobSummary {
   std::string map_png;
 };
 
+// With `resume_from`, continues that saved run with `log` as the log that
+// follows it (steps numbered on; outputs cover the new steps).
 HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& cfg,
-                          const std::string& out_dir, bool show_progress);
+                          const std::string& out_dir, bool show_progress,
+                          const topology::Session* resume_from = nullptr);
 
 }  // namespace hmt::pipeline

@@ -17,8 +17,11 @@ namespace hmt::pipeline {
 
 struct InputOptions {
   std::string log;     // path; relative paths are taken from the config file's folder
+  int first_step = 0;  // steps of the log skipped before the first one used
   int max_steps = 0;   // 0 = the whole log
   void load(Config& cfg, const std::string& config_dir);
+  // The steps this selects (first_step on, at most max_steps).
+  Log select(Log log) const;
 };
 
 struct OutputOptions {

@@ -79,4 +79,39 @@ void save_topology(const std::string& path, const HmtMap& map,
 // Throws InputError for a missing, unreadable, truncated or corrupt file.
 TopologySnapshot load_topology(const std::string& path);
 
+// The HMT map file of a run (hmt_map.bin): every live hypothesis with its
+// own map and path, and what is needed to continue the run from where it
+// stopped (hmt-slam resume). Same header layout as above, with magic
+// "HMTSESS\x1a" and its own version; payload:
+//   u64 steps processed; f64 timestamp of the last one;
+//   u32 hypothesis count, then per hypothesis (ascending id):
+//     u32 id; f64 x, y, theta of the robot in its current area (the best
+//     particle); f64 x, y, theta of that area's frame in the area
+//     abstraction's frame; u64 n; n bytes: a topology payload as above with
+//     this hypothesis's map and its one path (log_weight = its log
+//     probability).
+// Every part is checked as a topology file is, and each hypothesis's
+// current area must have a map.
+constexpr uint32_t kSessionFormatVersion = 1;
+inline constexpr char kSessionMagic[8] = {'H', 'M', 'T', 'S', 'E', 'S', 'S', '\x1a'};
+
+struct SessionHypothesis {
+  uint32_t id = 0;
+  HmtMap map;
+  TopologicalHypothesis topo;
+  Pose2D robot;
+  Pose2D aam_from_area;
+};
+
+struct Session {
+  uint64_t steps = 0;
+  double time = 0.0;
+  std::vector<SessionHypothesis> hypotheses;
+};
+
+std::string encode_session(const Session& session);
+Session decode_session(const std::string& bytes, const std::string& origin);
+void save_session(const std::string& path, const Session& session);
+Session load_session(const std::string& path);
+
 }  // namespace hmt::topology
