@@ -27,6 +27,10 @@
 #   HMT_SLAM    our binary [<repo>/build/apps/hmt-slam]
 #   RBPF_SLAM   [rbpf-slam]
 #   MRPT_INI    [/usr/share/mrpt/config_files/rbpf-slam/gridmapping_optimal_sampling.ini]
+#   CONFIG      our config for every log [config/NAME.ini when the log has
+#               one, else config/default.ini]
+#   TABLE       file name of the table in OUT_DIR [metric.md]
+#   TITLE       the table's heading [Metric SLAM: hmt-slam vs MRPT rbpf-slam]
 #   RECONVERT=1 convert the CARMEN logs again even if cached
 #
 # Exit status: 0 when every run succeeded, 1 when a row says FAIL (the table is
@@ -52,7 +56,9 @@ DATASETS=$(realpath -m "${DATASETS:-$BENCH_REPO/../shared/datasets}")
 HMT_SLAM=${HMT_SLAM:-$BENCH_REPO/build/apps/hmt-slam}
 RBPF_SLAM=${RBPF_SLAM:-rbpf-slam}
 MRPT_INI=${MRPT_INI:-/usr/share/mrpt/config_files/rbpf-slam/gridmapping_optimal_sampling.ini}
-CONFIG=$BENCH_REPO/config/default.ini
+CONFIG=${CONFIG:-}
+TABLE=${TABLE:-metric.md}
+TITLE=${TITLE:-Metric SLAM: hmt-slam vs MRPT rbpf-slam}
 
 # ---------------------------------------------------------------- checks
 [[ "$MODE" == run || "$MODE" == metric ]] || bench_die "MODE must be 'run' or 'metric', not '$MODE'"
@@ -68,7 +74,7 @@ bench_need_tool python3
 bench_need_tool "$RBPF_SLAM" "Debian package mrpt-apps"
 bench_need_tool "$HMT_SLAM" "build it with scripts/build.sh"
 [[ -r "$MRPT_INI" ]] || bench_die "MRPT config $MRPT_INI not found (Debian package mrpt-common)"
-[[ -r "$CONFIG" ]] || bench_die "$CONFIG not found"
+[[ -z "$CONFIG" || -r "$CONFIG" ]] || bench_die "$CONFIG not found"
 for f in relation_error.py bench/mrpt_path.py; do
   [[ -r "$BENCH_REPO/scripts/$f" ]] || bench_die "scripts/$f not found"
 done
@@ -102,12 +108,19 @@ log_input() {
   fi
 }
 
+# config_for NAME: our config for a log (CONFIG, or the log's own, or the default).
+config_for() {
+  if [[ -n $CONFIG ]]; then echo "$CONFIG"
+  elif [[ -r $BENCH_REPO/config/$1.ini ]]; then echo "$BENCH_REPO/config/$1.ini"
+  else echo "$BENCH_REPO/config/default.ini"; fi
+}
+
 # run_ours NAME: sets OURS_WALL OURS_CPU OURS_RSS OURS_SCANS OURS_TRAJ.
 run_ours() {
   local name=$1
   local d=$WORK_DIR/$name/ours
   rm -rf "$d" && mkdir -p "$d"
-  local args=("$MODE" --config "$CONFIG" --input "$INPUT" --out "$d/out" --quiet
+  local args=("$MODE" --config "$(config_for "$name")" --input "$INPUT" --out "$d/out" --quiet
     --set "metric_slam.particles=$PARTICLES" --set "metric_slam.seed=$SEED")
   [[ -n $THREADS ]] && args+=(--set "metric_slam.threads=$THREADS")
   bench_log "$name: hmt-slam $MODE ($PARTICLES particles)"
@@ -202,7 +215,7 @@ for name in $LOGS; do
   if ! log_input "$name"; then
     bench_log "$name: FAIL: $ERR"
     FAILED=1
-    ROWS+=("| $name | - | - | - | - | - | - | - | - | - | - | - | FAIL: $ERR |")
+    ROWS+=("| $name | - | - | - | - | - | - | - | - | - | - | - | - | FAIL: $ERR |")
     continue
   fi
   if ! run_ours "$name"; then status+=("ours FAIL: $ERR"); bench_log "$name: ours FAIL: $ERR"; fi
@@ -227,24 +240,24 @@ for name in $LOGS; do
     SCAN_NOTE=1
   fi
   if [[ ${#status[@]} -eq 0 ]]; then status=(ok); else FAILED=1; fi
-  ROWS+=("| $name | $scans | $OURS_WALL | $MRPT_WALL | $(bench_ratio "$MRPT_WALL" "$OURS_WALL") | $OURS_CPU | $MRPT_CPU | $OURS_RSS | $MRPT_RSS | $(bench_ratio "$MRPT_RSS" "$OURS_RSS") | $ours_rel | $mrpt_rel | $(join_status) |")
+  ROWS+=("| $name | $(basename "$(config_for "$name")") | $scans | $OURS_WALL | $MRPT_WALL | $(bench_ratio "$MRPT_WALL" "$OURS_WALL") | $OURS_CPU | $MRPT_CPU | $OURS_RSS | $MRPT_RSS | $(bench_ratio "$MRPT_RSS" "$OURS_RSS") | $ours_rel | $mrpt_rel | $(join_status) |")
 done
 
 LOAD_END=$(bench_load)
 
 report() {
-  echo "## Metric SLAM: hmt-slam vs MRPT rbpf-slam"
+  echo "## $TITLE"
   echo
   echo "- machine: $MACHINE"
   echo "- load average (1/5/15 min) at start: $LOAD_START, at end: $LOAD_END (other work on the machine inflates the times)"
   echo "- particles: $PARTICLES (both); seed $SEED; our threads: $OURS_THREADS (rbpf-slam: 1)"
-  echo "- ours: \`hmt-slam $MODE\` with config/default.ini, commit $REV"
+  echo "- ours: \`hmt-slam $MODE\` with the config in the table (config/), commit $REV"
   echo "- MRPT: rbpf-slam $MRPT_VERSION with $(basename "$MRPT_INI") (files, windows and logging off, otherwise unchanged)"
   echo "- both read the same rawlog (CARMEN logs converted once by \`hmt-slam convert --format sf\`)"
   echo "- wall time, CPU time (user + system, all threads) and peak RSS from GNU \`time -v\` of the whole process (reading the log and writing the map included); fastest of $REPEAT run(s) each"
   echo
-  echo "| log | scans | ours wall (s) | MRPT wall (s) | MRPT/ours time | ours CPU (s) | MRPT CPU (s) | ours peak RSS (MB) | MRPT peak RSS (MB) | MRPT/ours RSS | ours relation error | MRPT relation error | status |"
-  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|"
+  echo "| log | our config | scans | ours wall (s) | MRPT wall (s) | MRPT/ours time | ours CPU (s) | MRPT CPU (s) | ours peak RSS (MB) | MRPT peak RSS (MB) | MRPT/ours RSS | ours relation error | MRPT relation error | status |"
+  echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|"
   printf '%s\n' "${ROWS[@]}"
   echo
   echo "Relation error: translational mean ± std, rotational mean (number of relations), against \`relations/NAME.relations\`; \"-\" where a log has none. GMapping's reference trajectory scores 0.099 ± 0.121 m, 2.32° (144) on intel."
@@ -259,8 +272,8 @@ report() {
   fi
 }
 
-report | tee "$OUT_DIR/metric.md"
-bench_log "table written to $OUT_DIR/metric.md; run outputs in $WORK_DIR"
+report | tee "$OUT_DIR/$TABLE"
+bench_log "table written to $OUT_DIR/$TABLE; run outputs in $WORK_DIR"
 if [[ $FAILED == 1 ]]; then
   bench_log "some runs failed (FAIL in the table)"
   exit 1

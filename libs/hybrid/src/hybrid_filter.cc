@@ -330,6 +330,24 @@ void HybridFilter::normalise_and_prune() {
   p = probabilities();
   for (size_t i = 0; i < hyps_.size(); ++i) hyps_[i].topo.log_weight = std::log(p[i]);
   stats_.max_hypotheses_alive = std::max(stats_.max_hypotheses_alive, hyps_.size());
+  share_particles(p);
+}
+
+void HybridFilter::share_particles(const std::vector<double>& p) {
+  // Each hypothesis's share of the particle budget follows its probability:
+  // grown at once when it rises, shrunk only when it has halved (resizing
+  // costs diversity, so small changes are left alone).
+  const int n = opt_.rbpf.particles;
+  if (opt_.hybrid.min_particles == 0) return;  // a full set each
+  const int floor = std::min(opt_.hybrid.min_particles, n);
+  for (size_t i = 0; i < hyps_.size(); ++i) {
+    metric_slam::GridRbpf& f = hyps_[i].filter;
+    if (f.particles().empty()) continue;
+    const size_t target = static_cast<size_t>(
+        std::clamp(static_cast<int>(std::lround(n * p[i])), floor, n));
+    const size_t now = f.particles().size();
+    if (target > now || 2 * target <= now) f.resize(target);
+  }
 }
 
 void HybridFilter::forget_shared_history() {

@@ -5,6 +5,7 @@ namespace hmt::hybrid {
 void HybridOptions::load(Config& cfg, const std::string& s) {
   max_hypotheses = cfg.get_int(s, "max_hypotheses", max_hypotheses);
   prune_probability = cfg.get_double(s, "prune_probability", prune_probability);
+  min_particles = cfg.get_int(s, "min_particles", min_particles);
   keyframe_distance = cfg.get_double(s, "keyframe_distance", keyframe_distance);
   keyframe_angle = cfg.get_double(s, "keyframe_angle", keyframe_angle);
   arc_std_xy = cfg.get_double(s, "arc_std_xy", arc_std_xy);
@@ -15,6 +16,7 @@ void HybridOptions::load(Config& cfg, const std::string& s) {
   require(max_hypotheses >= 1 && max_hypotheses <= 64, s, "max_hypotheses", "in [1, 64]");
   require(prune_probability >= 0 && prune_probability < 0.5, s, "prune_probability",
           "in [0, 0.5)");
+  require(min_particles >= 0, s, "min_particles", ">= 0");
   require(keyframe_distance > 0, s, "keyframe_distance", "> 0");
   require(keyframe_angle > 0, s, "keyframe_angle", "> 0");
   require(arc_std_xy > 0, s, "arc_std_xy", "> 0");

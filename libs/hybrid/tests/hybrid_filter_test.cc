@@ -21,6 +21,32 @@ TEST(HybridFilter, ClosesTheLoopByInference) {
   expect_ring_closed(f);
 }
 
+TEST(HybridFilter, HypothesesShareTheParticleBudgetWhenAsked) {
+  const auto run = testing_ring::ring_run(7);
+  HmtOptions o = ring_options();
+  o.hybrid.min_particles = 3;
+  // Rival topologies followed and kept even when improbable, so some live
+  // beside the winner.
+  o.tsbi.min_probability = 1e-9;
+  o.hybrid.prune_probability = 1e-9;
+  HybridFilter f(o);
+  bool shared = false;
+  for (const auto& st : run.log.steps) {
+    f.process(st);
+    const std::vector<double> p = f.probabilities();
+    for (size_t i = 0; i < p.size(); ++i) {
+      const size_t n = f.hypotheses()[i].filter.particles().size();
+      ASSERT_GE(n, 3u);
+      ASSERT_LE(n, 10u);
+      // A hypothesis holds at least its share (rounded), never less.
+      ASSERT_GE(static_cast<double>(n) + 0.5, 10.0 * p[i]);
+      shared |= n < 10;
+    }
+    if (p.size() == 1) ASSERT_EQ(f.hypotheses()[0].filter.particles().size(), 10u);
+  }
+  EXPECT_TRUE(shared);  // some rival topology ran on fewer particles
+}
+
 TEST(HybridFilter, Deterministic) {
   // Half the ring: a few new-area events.
   const auto run = testing_sim::simulate({{2, 2, 0}, {28, 2, 0}, {28, 20, 0}}, 0.3, 9, 0.03,

@@ -236,20 +236,30 @@ void GridRbpf::resample_if_needed() {
     p.path_log_weight -= top_path;
   }
   if (1.0 / s2 >= opt_.resample_threshold * n) return;
+  draw(w, particles_.size());
+  ++stats_.resamplings;
+}
+
+void GridRbpf::draw(const std::vector<double>& w, size_t count) {
   // Systematic (low-variance) resampling.
   std::vector<Particle> next;
-  next.reserve(particles_.size());
-  const double step = 1.0 / n;
+  next.reserve(count);
+  const double step = 1.0 / static_cast<double>(count);
   double u = rng_.uniform() * step, c = w[0];
   size_t i = 0;
-  for (size_t k = 0; k < w.size(); ++k) {
+  for (size_t k = 0; k < count; ++k) {
     while (u > c && i + 1 < w.size()) c += w[++i];
     next.push_back(particles_[i]);  // maps share tiles; paths are copied
     next.back().log_weight = 0.0;
     u += step;
   }
   particles_ = std::move(next);
-  ++stats_.resamplings;
+}
+
+void GridRbpf::resize(size_t n) {
+  if (n == 0) throw Error(ExitCode::kInternal, "GridRbpf::resize(0)");
+  if (particles_.empty() || n == particles_.size()) return;
+  draw(weights(), n);
 }
 
 std::vector<Pose2D> GridRbpf::start_new_area(const std::vector<SeedScan>& seeds,

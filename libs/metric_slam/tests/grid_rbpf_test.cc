@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hmt/common/error.h"
 #include "sim_world.h"
 
 namespace hmt::metric_slam {
@@ -111,6 +112,34 @@ TEST(GridRbpf, NewAreaAndReloadInterface) {
   // Keeps working in the reloaded map.
   for (size_t i = 20; i < 30; ++i) f.process(run.log.steps[i]);
   EXPECT_EQ(f.best().path.size(), 11u);
+}
+
+TEST(GridRbpf, ResizeAndRestart) {
+  const auto run = loop_run(15);
+  GridRbpf f(small_filter(1));
+  for (size_t i = 0; i < 20; ++i) f.process(run.log.steps[i]);
+  f.resize(4);
+  ASSERT_EQ(f.particles().size(), 4u);
+  for (double w : f.weights()) EXPECT_DOUBLE_EQ(w, 0.25);
+  f.resize(12);
+  ASSERT_EQ(f.particles().size(), 12u);
+  for (size_t i = 20; i < 30; ++i) f.process(run.log.steps[i]);
+  EXPECT_EQ(f.particles().size(), 12u);  // resampling keeps the new count
+  EXPECT_EQ(f.best().path.size(), 30u);
+  EXPECT_THROW(f.resize(0), Error);
+
+  // Restart: every particle (the configured count) at the pose, in the map.
+  const grid::OccupancyGrid map = f.best().map;
+  const Pose2D at = f.best().pose;
+  f.restart(map, at);
+  ASSERT_EQ(f.particles().size(), 10u);
+  for (const auto& p : f.particles()) {
+    EXPECT_EQ(p.pose.x, at.x);
+    EXPECT_EQ(p.path.size(), 1u);
+    EXPECT_EQ(p.map.tile_count(), map.tile_count());
+  }
+  for (size_t i = 30; i < 40; ++i) f.process(run.log.steps[i]);
+  EXPECT_LT((f.best().pose - run.truth[39]).norm(), (at - run.truth[29]).norm() + 0.5);
 }
 
 }  // namespace

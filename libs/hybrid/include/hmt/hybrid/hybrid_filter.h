@@ -196,6 +196,7 @@ class HybridFilter {
                                  const EventInput& input,
                                  const std::vector<tsbi::Outcome>& outcomes);
   void normalise_and_prune();
+  void share_particles(const std::vector<double>& probabilities);
   void forget_shared_history();
 
   HmtOptions opt_;

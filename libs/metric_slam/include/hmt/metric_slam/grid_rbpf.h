@@ -102,6 +102,11 @@ class GridRbpf {
   // Re-enter a known area: every particle gets `map` (shared, not copied) and
   // the given pose in that map's frame (one per particle, or one for all).
   void load_area(const grid::OccupancyGrid& map, const std::vector<Pose2D>& poses);
+  // Draws `n` particles from the current ones by their weights (systematic
+  // resampling; weights equal afterwards): how a topological hypothesis's
+  // share of the particle budget grows or shrinks. No-op when n is the
+  // current count.
+  void resize(size_t n);
   // Continue a saved run: every particle at `pose` in `map` (shared), equal
   // weights, as if the filter had just processed the saved run's last step.
   void restart(const grid::OccupancyGrid& map, const Pose2D& pose);
@@ -129,6 +134,8 @@ class GridRbpf {
                      uint64_t stream_seed, bool* fallback);
   void maybe_insert(Particle& p, const LaserScan& scan);
   void resample_if_needed();
+  // Replaces the particles by `count` drawn from them by the weights `w`.
+  void draw(const std::vector<double>& w, size_t count);
 
   RbpfOptions opt_;
   ScanMatcher matcher_;
