@@ -49,6 +49,30 @@ std::vector<Pose2D> global_trajectory(const std::vector<hybrid::TrajectorySegmen
   return out;
 }
 
+// What the filter did (summary.json), from a finished system.
+nlohmann::json run_summary(const framework::HmtSystem& system) {
+  const hybrid::HybridFilter& filter = system.filter();
+  const auto& st = filter.stats();
+  nlohmann::json j;
+  j["keyframes"] = st.keyframes;
+  j["new_area_events"] = st.new_area_events;
+  j["transitions_evaluated"] = filter.transitions().size();
+  j["loop_closures_accepted"] = st.loop_closures_accepted;
+  j["max_hypotheses_alive"] = st.max_hypotheses_alive;
+  j["hypotheses_at_end"] = filter.hypotheses().size();
+  j["forgotten_path_entries"] = st.forgotten_path_entries;
+  // Per-process totals (s): where the time went (the threads overlap).
+  const auto& pt = system.times();
+  auto total = [](const std::vector<double>& v) {
+    double t = 0.0;
+    for (double x : v) t += x;
+    return t / 1000.0;
+  };
+  j["process_time_s"] = {{"metric_slam", total(pt.metric_slam)}, {"aam", total(pt.aam)},
+                         {"tsbi", total(pt.tsbi)}, {"tlca", total(pt.tlca)}};
+  return j;
+}
+
 }  // namespace
 
 HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& cfg,
@@ -62,7 +86,10 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   size_t n = log.steps.size();
   if (opt.input.max_steps > 0) n = std::min(n, static_cast<size_t>(opt.input.max_steps));
   if (n == 0) throw InputError(log.source + ": the log has no scans");
-  framework::HmtSystem system(opt.hmt(), opt.framework);
+  // Held by pointer: released (every particle's map) once its results are
+  // out, before the global map is drawn, so the two never add up.
+  auto owned = std::make_unique<framework::HmtSystem>(opt.hmt(), opt.framework);
+  framework::HmtSystem& system = *owned;
   const uint64_t first_step = resume_from ? resume_from->steps : 0;
   if (resume_from) system.resume(*resume_from);
   Progress progress("scans", n);
@@ -95,10 +122,31 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   size_t peak_map_bytes = 0;
   for (const auto& t : system.traces()) peak_map_bytes = std::max(peak_map_bytes, t.map_memory_bytes);
 
-  // The global map of the most probable hypothesis: area poses by least
-  // squares over every arc (002 Sec. IV-C), the shortest-path tree as the
-  // fallback when the optimisation cannot run.
+  // What the processes did, and the state to resume from.
+  topology::save_session(out_dir + "/hmt_map.bin", filter.session());
+  write_pmf_csv(out_dir + "/topological_pmf.csv", system.traces());
+  write_ess_csv(out_dir + "/ess.csv", system.traces());
+  write_memory_csv(out_dir + "/memory.csv", system.traces());
+  write_process_times_csv(out_dir + "/process_times.csv", system.times(), system.traces());
+  write_tsbi_events_csv(out_dir + "/tsbi_events.csv", filter.transitions());
+  if (probe) write_rtl_csv(out_dir + "/rtl.csv", probe->samples());
+  nlohmann::json j = run_summary(system);
+  j["input"] = log.source;
+  j["particles"] = opt.rbpf.particles;
+  j["peak_map_memory_mb"] = peak_map_bytes / kMB;
+  j["framework_mode"] =
+      opt.framework.mode == framework::Mode::kLive ? "live" : "deterministic";
+
+  // The most probable hypothesis's map and path; then the particles go.
   const topology::HmtMap map = filter.final_map();
+  const std::vector<hybrid::TrajectorySegment> segments = filter.final_trajectory();
+  HmtJobSummary sum;
+  sum.loop_closures = filter.stats().loop_closures_accepted;
+  owned.reset();
+
+  // The global map: area poses by least squares over every arc (002 Sec.
+  // IV-C), the shortest-path tree as the fallback when the optimisation
+  // cannot run.
   global_map::PoseGraphReport report;
   global_map::GlobalPoses poses;
   std::string pose_method = "least_squares";
@@ -110,16 +158,14 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
     poses = global_map::shortest_path_poses(map, 1);
     pose_method = "shortest_path";
   }
-  const std::vector<Pose2D> traj = global_trajectory(filter.final_trajectory(), poses, first_step, n);
+  const std::vector<Pose2D> traj = global_trajectory(segments, poses, first_step, n);
   std::vector<io::StampedPose> stamped;
   for (size_t i = 0; i < n; ++i) stamped.push_back({log.steps[i].timestamp, traj[i]});
 
-  HmtJobSummary sum;
   sum.scans = n;
   sum.final_pose = traj.back();
   sum.areas = map.area_count();
   sum.arcs = map.arcs().size();
-  sum.loop_closures = filter.stats().loop_closures_accepted;
   io::write_tum(out_dir + "/trajectory.tum", stamped);
 
   const grid::OccupancyGrid global = global_map::render_global_grid(map, poses, opt.rbpf.resolution);
@@ -136,53 +182,18 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
                         out_dir + "/areas/area_" + std::to_string(id) + ".png");
   }
   if (opt.output.pgm) grid::write_pgm_yaml(img, out_dir + "/map");
-
-  // The file holds one HMT map: the most probable hypothesis's, with its
-  // topological path (the other hypotheses' maps differ from it).
-  topology::save_session(out_dir + "/hmt_map.bin", filter.session());
   write_topology_json(out_dir + "/topology.json", map, poses);
   write_topology_dot(out_dir + "/topology.dot", map);
-  write_pmf_csv(out_dir + "/topological_pmf.csv", system.traces());
-  write_ess_csv(out_dir + "/ess.csv", system.traces());
-  write_memory_csv(out_dir + "/memory.csv", system.traces());
-  write_process_times_csv(out_dir + "/process_times.csv", system.times(), system.traces());
-  write_tsbi_events_csv(out_dir + "/tsbi_events.csv", filter.transitions());
-  if (probe) write_rtl_csv(out_dir + "/rtl.csv", probe->samples());
 
   sum.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   sum.peak_rss_bytes = peak_rss_bytes();
-  const auto& st = filter.stats();
-  nlohmann::json j;
-  j["input"] = log.source;
   j["scans"] = sum.scans;
-  j["particles"] = opt.rbpf.particles;
   j["wall_time_s"] = sum.wall_time_s;
   j["peak_rss_mb"] = sum.peak_rss_bytes / kMB;
-  j["peak_map_memory_mb"] = peak_map_bytes / kMB;
   j["final_pose"] = {{"x", sum.final_pose.x}, {"y", sum.final_pose.y},
                      {"theta", sum.final_pose.theta}};
   j["areas"] = sum.areas;
   j["arcs"] = sum.arcs;
-  j["keyframes"] = st.keyframes;
-  j["new_area_events"] = st.new_area_events;
-  j["transitions_evaluated"] = filter.transitions().size();
-  j["loop_closures_accepted"] = st.loop_closures_accepted;
-  j["max_hypotheses_alive"] = st.max_hypotheses_alive;
-  j["hypotheses_at_end"] = filter.hypotheses().size();
-  j["forgotten_path_entries"] = st.forgotten_path_entries;
-  j["framework_mode"] =
-      opt.framework.mode == framework::Mode::kLive ? "live" : "deterministic";
-  {
-    // Per-process totals (s): where the time went (the threads overlap).
-    const auto& pt = system.times();
-    auto total = [](const std::vector<double>& v) {
-      double t = 0.0;
-      for (double x : v) t += x;
-      return t / 1000.0;
-    };
-    j["process_time_s"] = {{"metric_slam", total(pt.metric_slam)}, {"aam", total(pt.aam)},
-                           {"tsbi", total(pt.tsbi)}, {"tlca", total(pt.tlca)}};
-  }
   j["global_poses"] = {{"method", pose_method},
                        {"iterations", report.iterations},
                        {"initial_chi2", report.initial_chi2},
