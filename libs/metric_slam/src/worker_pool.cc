@@ -61,6 +61,9 @@ void WorkerPool::parallel_for(size_t n, const std::function<void(size_t)>& fn) {
     for (size_t i = 0; i < n; ++i) fn(i);
     return;
   }
+  // Callers on different threads (metric SLAM and TSBI in live mode) take
+  // turns: the pool runs one loop at a time.
+  std::lock_guard<std::mutex> turn(call_mutex_);
   std::unique_lock<std::mutex> lock(mutex_);
   job_ = &fn;
   n_ = n;

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <thread>
+#include <vector>
+
 #include <atomic>
 #include <stdexcept>
 
@@ -27,6 +30,20 @@ TEST(WorkerPool, PropagatesExceptions) {
   std::atomic<int> n{0};
   pool.parallel_for(5, [&](size_t) { n++; });
   EXPECT_EQ(n.load(), 5);
+}
+
+TEST(WorkerPool, CallersOnSeveralThreadsTakeTurns) {
+  WorkerPool pool(3);
+  std::vector<std::vector<int>> seen(4, std::vector<int>(500, 0));
+  std::vector<std::thread> callers;
+  for (size_t c = 0; c < seen.size(); ++c)
+    callers.emplace_back([&, c] {
+      for (int rep = 0; rep < 20; ++rep)
+        pool.parallel_for(seen[c].size(), [&](size_t i) { ++seen[c][i]; });
+    });
+  for (auto& t : callers) t.join();
+  for (const auto& v : seen)
+    for (int x : v) EXPECT_EQ(x, 20);
 }
 
 }  // namespace

@@ -22,7 +22,8 @@ class WorkerPool {
   WorkerPool& operator=(const WorkerPool&) = delete;
 
   // Calls fn(i) for i in [0, n), returns when all are done. Exceptions
-  // thrown by fn are rethrown here (the first one).
+  // thrown by fn are rethrown here (the first one). Callable from several
+  // threads (they take turns); fn must not call parallel_for on this pool.
   void parallel_for(size_t n, const std::function<void(size_t)>& fn);
   int threads() const { return static_cast<int>(workers_.size()) + 1; }
   // The thread count for a requested one: itself if > 0, else one per core.
@@ -33,6 +34,7 @@ class WorkerPool {
   void run_chunk(std::unique_lock<std::mutex>& lock);
 
   std::vector<std::thread> workers_;
+  std::mutex call_mutex_;           // held by the one parallel_for running
   std::mutex mutex_;                // guards every member below
   std::condition_variable wake_;    // new job or shutdown
   std::condition_variable done_;    // a worker finished its part
