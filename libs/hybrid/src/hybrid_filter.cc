@@ -42,7 +42,8 @@ HybridFilter::HybridFilter(const HmtOptions& options)
       pool_(std::make_shared<metric_slam::WorkerPool>(
           metric_slam::WorkerPool::threads_for(options.rbpf.threads))),
       aam_(options.area),
-      tsbi_(options.tsbi, options.rbpf.matcher, options.rbpf.likelihood_gain, options.area) {}
+      tsbi_(options.tsbi, options.rbpf.matcher, options.rbpf.likelihood_gain, options.area,
+            pool_) {}
 
 void HybridFilter::start(const LogStep& step) {
   Hypothesis h{metric_slam::GridRbpf(opt_.rbpf, pool_)};
