@@ -5,9 +5,11 @@
 # (GNU time -v), the ratios MRPT/ours, and, for logs with ground-truth
 # relations (intel), the relation error (Kuemmerle et al. 2009) of both.
 #
-# Runs are strictly sequential (one heavy process at a time). CARMEN logs are
-# converted once by `hmt-slam convert --format sf` into CACHE_DIR; both
-# programs then read that same Actions/SensoryFrame rawlog.
+# Ours reads config/NAME.ini when the log has one (its tuned [area] tau),
+# config/default.ini otherwise. Runs are strictly sequential (one heavy
+# process at a time). CARMEN logs are converted once by `hmt-slam convert
+# --format sf` into CACHE_DIR; both programs then read that same
+# Actions/SensoryFrame rawlog.
 #
 # Environment (defaults in brackets):
 #   LOGS        logs to run ["malaga edmonton aces intel"]; "malaga" is the
@@ -107,7 +109,9 @@ run_ours() {
   local name=$1
   local d=$WORK_DIR/$name/ours
   rm -rf "$d" && mkdir -p "$d"
-  local args=("$MODE" --config "$CONFIG" --input "$INPUT" --out "$d/out" --quiet
+  local config=$CONFIG
+  [[ -r $BENCH_REPO/config/$name.ini ]] && config=$BENCH_REPO/config/$name.ini
+  local args=("$MODE" --config "$config" --input "$INPUT" --out "$d/out" --quiet
     --set "metric_slam.particles=$PARTICLES" --set "metric_slam.seed=$SEED")
   [[ -n $THREADS ]] && args+=(--set "metric_slam.threads=$THREADS")
   bench_log "$name: hmt-slam $MODE ($PARTICLES particles)"
