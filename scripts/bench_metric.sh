@@ -5,9 +5,11 @@
 # (GNU time -v), the ratios MRPT/ours, and, for logs with ground-truth
 # relations (intel), the relation error (Kuemmerle et al. 2009) of both.
 #
-# Runs are strictly sequential (one heavy process at a time). CARMEN logs are
-# converted once by `hmt-slam convert --format sf` into CACHE_DIR; both
-# programs then read that same Actions/SensoryFrame rawlog.
+# Ours reads config/NAME.ini when the log has one (its tuned [area] tau),
+# config/default.ini otherwise. Runs are strictly sequential (one heavy
+# process at a time). CARMEN logs are converted once by `hmt-slam convert
+# --format sf` into CACHE_DIR; both programs then read that same
+# Actions/SensoryFrame rawlog.
 #
 # Environment (defaults in brackets):
 #   LOGS        logs to run ["malaga edmonton aces intel"]; "malaga" is the

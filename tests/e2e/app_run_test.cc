@@ -103,20 +103,6 @@ TEST(AppRun, ResumeContinuesASavedRunAndClosesTheLoop) {
   EXPECT_EQ(m.exit_code, 4) << m.err;
 }
 
-TEST(AppRun, LiveModeAtTwiceRealTimeClosesTheLoop) {
-  // Metric SLAM never waits for the topology; the log is replayed at twice
-  // the pace it was recorded (30 s), so TSBI's answers come a few steps late
-  // and are carried forward. Timing decides the details, not the outcome.
-  const std::string dir = temp_dir("live");
-  const AppResult r = run_app("run --config config/default.ini --quiet --set framework.mode=live "
-                              "--set framework.live_speed=2 --out '" + dir + "/out'", dir);
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  ASSERT_EQ(io::read_tum(dir + "/out/trajectory.tum").size(), 225u);
-  const auto summary = nlohmann::json::parse(slurp(dir + "/out/summary.json"));
-  EXPECT_EQ(summary["framework_mode"].get<std::string>(), "live");
-  expect_loop_closed_into_area_1(dir + "/out", 3);
-}
-
 TEST(AppRun, EdmontonClosesItsLoop) {
   const std::string dir = temp_dir("edmonton_loop");
   const AppResult r = run_app("run --config config/edmonton.ini --quiet --out '" + dir + "/out'", dir);

@@ -43,7 +43,11 @@ HybridFilter::HybridFilter(const HmtOptions& options)
       pool_(std::make_shared<metric_slam::WorkerPool>(
           metric_slam::WorkerPool::threads_for(options.rbpf.threads))),
       aam_(options.area),
-      tsbi_(options.tsbi, options.rbpf.matcher, options.rbpf.likelihood_gain, options.area) {}
+      // TSBI weighs its candidates on a pool of its own: in live mode it runs
+      // beside metric SLAM, which must not wait for it.
+      tsbi_(options.tsbi, options.rbpf.matcher, options.rbpf.likelihood_gain, options.area,
+            std::make_shared<metric_slam::WorkerPool>(
+                metric_slam::WorkerPool::threads_for(options.rbpf.threads))) {}
 
 void HybridFilter::start(const LogStep& step) {
   Hypothesis h{metric_slam::GridRbpf(opt_.rbpf, pool_)};

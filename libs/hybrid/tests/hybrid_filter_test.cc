@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "ring_world.h"
 
 namespace hmt::hybrid {
@@ -22,29 +24,39 @@ TEST(HybridFilter, ClosesTheLoopByInference) {
 }
 
 TEST(HybridFilter, HypothesesShareTheParticleBudgetWhenAsked) {
+  // Two rival topologies of probability 0.9 and 0.1: the state of a run
+  // resumed with min_particles 3 (of 10).
   const auto run = testing_ring::ring_run(7);
+  HybridFilter first(ring_options());
+  for (size_t i = 0; i < 60; ++i) first.process(run.log.steps[i]);
+  topology::Session s = first.session();
+  ASSERT_EQ(s.hypotheses.size(), 1u);
+  s.hypotheses.push_back(s.hypotheses[0]);
+  s.hypotheses[1].id = s.hypotheses[0].id + 1;
+  s.hypotheses[0].topo.log_weight = std::log(0.9);
+  s.hypotheses[1].topo.log_weight = std::log(0.1);
   HmtOptions o = ring_options();
   o.hybrid.min_particles = 3;
-  // Rival topologies followed and kept even when improbable, so some live
-  // beside the winner.
-  o.tsbi.min_probability = 1e-9;
-  o.hybrid.prune_probability = 1e-9;
   HybridFilter f(o);
-  bool shared = false;
-  for (const auto& st : run.log.steps) {
-    f.process(st);
+  f.resume(s);
+  ASSERT_EQ(f.hypotheses().size(), 2u);
+  EXPECT_EQ(f.hypotheses()[0].filter.particles().size(), 10u);  // 9 of 10: left alone
+  EXPECT_EQ(f.hypotheses()[1].filter.particles().size(), 3u);   // 1 of 10: the floor
+  for (size_t i = 60; i < 120; ++i) {
+    f.process(run.log.steps[i]);
     const std::vector<double> p = f.probabilities();
-    for (size_t i = 0; i < p.size(); ++i) {
-      const size_t n = f.hypotheses()[i].filter.particles().size();
+    for (size_t k = 0; k < p.size(); ++k) {
+      const size_t n = f.hypotheses()[k].filter.particles().size();
       ASSERT_GE(n, 3u);
       ASSERT_LE(n, 10u);
-      // A hypothesis holds at least its share (rounded), never less.
-      ASSERT_GE(static_cast<double>(n) + 0.5, 10.0 * p[i]);
-      shared |= n < 10;
+      ASSERT_GE(static_cast<double>(n) + 0.5, 10.0 * p[k]);  // at least its share
     }
     if (p.size() == 1) ASSERT_EQ(f.hypotheses()[0].filter.particles().size(), 10u);
   }
-  EXPECT_TRUE(shared);  // some rival topology ran on fewer particles
+  // Without the option every hypothesis keeps the full set.
+  HybridFilter g(ring_options());
+  g.resume(s);
+  EXPECT_EQ(g.hypotheses()[1].filter.particles().size(), 10u);
 }
 
 TEST(HybridFilter, Deterministic) {

@@ -37,71 +37,121 @@ std::vector<Pose2D> match_starts(const PoseGaussian& prior, double k) {
   return starts;
 }
 
-metric_slam::MatcherOptions with_window(metric_slam::MatcherOptions o, int window) {
-  o.window = window;
-  return o;
-}
-
 }  // namespace
 
 TransitionModel::TransitionModel(const TsbiOptions& options,
                                  const metric_slam::MatcherOptions& matcher,
-                                 double likelihood_gain, const area::AreaOptions& area)
+                                 double likelihood_gain, const area::AreaOptions& area,
+                                 std::shared_ptr<metric_slam::WorkerPool> pool)
     : opt_(options),
       matcher_(matcher),
-      wide_(with_window(matcher, std::max(matcher.coarse_window, 2))),
       gain_(likelihood_gain),
-      area_(area) {}
+      area_(area),
+      pool_(std::move(pool)) {}
 
-std::vector<Pose2D> TransitionModel::wide_search(const grid::OccupancyGrid& map,
-                                                 const PoseGaussian& prior,
-                                                 const metric_slam::ScanPoints& obs) const {
-  // The lattice spans the gate's bounding box around the prior mean.
-  const Eigen::Vector3d half(std::sqrt(opt_.gate * prior.cov(0, 0)),
-                             std::sqrt(opt_.gate * prior.cov(1, 1)),
-                             std::min(M_PI, std::sqrt(opt_.gate * prior.cov(2, 2))));
-  double sx = opt_.search_step_xy, st = opt_.search_step_theta;
-  auto count = [&] {
-    return (2 * std::floor(half.x() / sx) + 1) * (2 * std::floor(half.y() / sx) + 1) *
-           (2 * std::floor(half.z() / st) + 1);
-  };
-  if (count() > opt_.search_max_poses) {
-    const double f = std::cbrt(count() / opt_.search_max_poses);
-    sx *= f;
-    st *= f;
+void TransitionModel::for_each_index(size_t n, const std::function<void(size_t)>& fn) const {
+  if (pool_) {
+    pool_->parallel_for(n, fn);
+  } else {
+    for (size_t i = 0; i < n; ++i) fn(i);
   }
-  const int nx = static_cast<int>(half.x() / sx), ny = static_cast<int>(half.y() / sx),
-            nt = static_cast<int>(half.z() / st);
-  const metric_slam::ScanPoints sub = metric_slam::spread_subset(obs, opt_.search_points);
-  const Eigen::Matrix3d S_inv = prior.cov.inverse();
-  struct Cand {
-    double ll;
-    Pose2D pose;
+}
+
+namespace {
+
+// The wide search's lattice over the gate's bounding box: steps (m, rad),
+// the translation step in whole cells, and the half-extent in steps.
+struct Lattice {
+  double sx = 0.0, st = 0.0;
+  int step_cells = 1;
+  int nx = 0, ny = 0, nt = 0;
+};
+
+Lattice gate_lattice(const PoseGaussian& prior, const TsbiOptions& opt, double res) {
+  const Eigen::Vector3d half(std::sqrt(opt.gate * prior.cov(0, 0)),
+                             std::sqrt(opt.gate * prior.cov(1, 1)),
+                             std::min(M_PI, std::sqrt(opt.gate * prior.cov(2, 2))));
+  Lattice l;
+  l.sx = opt.search_step_xy;
+  l.st = opt.search_step_theta;
+  auto count = [&] {
+    return (2 * std::floor(half.x() / l.sx) + 1) * (2 * std::floor(half.y() / l.sx) + 1) *
+           (2 * std::floor(half.z() / l.st) + 1);
   };
-  std::vector<Cand> cands;
-  for (int t = -nt; t <= nt; ++t)
-    for (int y = -ny; y <= ny; ++y)
-      for (int x = -nx; x <= nx; ++x) {
-        const Eigen::Vector3d e(x * sx, y * sx, t * st);
-        if (e.dot(S_inv * e) > opt_.gate) continue;
-        const Pose2D p(prior.mean.x + e.x(), prior.mean.y + e.y(),
-                       wrap_angle(prior.mean.theta + e.z()));
-        cands.push_back({wide_.score(map, p, sub).log_likelihood, p});
-      }
-  // Best first (ties in lattice order), then keep maxima at least two
-  // lattice steps apart.
+  if (count() > opt.search_max_poses) {
+    const double f = std::cbrt(count() / opt.search_max_poses);
+    l.sx *= f;
+    l.st *= f;
+  }
+  // Translation steps of whole cells: a point's cell then moves by whole
+  // cells across the (x, y) lattice, so each angle needs one rotation.
+  l.step_cells = std::max(1, static_cast<int>(std::lround(l.sx / res)));
+  l.sx = l.step_cells * res;
+  l.nx = static_cast<int>(half.x() / l.sx);
+  l.ny = static_cast<int>(half.y() / l.sx);
+  l.nt = static_cast<int>(half.z() / l.st);
+  return l;
+}
+
+struct Scored {
+  double score;
+  Pose2D pose;
+};
+
+// Best first (ties in lattice order), keeping poses at least two lattice
+// steps from every pose kept before; at most `count`.
+std::vector<Pose2D> separated_maxima(std::vector<Scored> cands, const Lattice& l, int count) {
   std::stable_sort(cands.begin(), cands.end(),
-                   [](const Cand& a, const Cand& b) { return a.ll > b.ll; });
+                   [](const Scored& a, const Scored& b) { return a.score > b.score; });
   std::vector<Pose2D> out;
-  for (const Cand& c : cands) {
-    if (static_cast<int>(out.size()) >= opt_.search_modes) break;
+  for (const Scored& c : cands) {
+    if (static_cast<int>(out.size()) >= count) break;
     const bool near = std::any_of(out.begin(), out.end(), [&](const Pose2D& q) {
-      return std::fabs(c.pose.x - q.x) < 2 * sx && std::fabs(c.pose.y - q.y) < 2 * sx &&
-             std::fabs(wrap_angle(c.pose.theta - q.theta)) < 2 * st;
+      return std::fabs(c.pose.x - q.x) < 2 * l.sx && std::fabs(c.pose.y - q.y) < 2 * l.sx &&
+             std::fabs(wrap_angle(c.pose.theta - q.theta)) < 2 * l.st;
     });
     if (!near) out.push_back(c.pose);
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<Pose2D> TransitionModel::wide_search(const MatchField& field,
+                                                 const PoseGaussian& prior,
+                                                 const metric_slam::ScanPoints& obs) const {
+  const double res = field.resolution();
+  const Lattice l = gate_lattice(prior, opt_, res);
+  const std::vector<Point2D> pts = metric_slam::spread_subset(obs, opt_.search_points).hit;
+  // A point's cost: its squared distance (cells) to the nearest obstacle,
+  // truncated half a cell beyond the wide window, as the matcher's
+  // likelihood field is truncated at its window.
+  const double reach = std::max(matcher_.options().coarse_window, 2) + 0.5;
+  double cost[MatchField::kFar + 1];
+  for (int d = 0; d <= MatchField::kFar; ++d) cost[d] = std::min(d * d * 1.0, reach * reach);
+  const Eigen::Matrix3d S_inv = prior.cov.inverse();
+  std::vector<Scored> cands;
+  std::vector<int> bx(pts.size()), by(pts.size());
+  for (int t = -l.nt; t <= l.nt; ++t) {
+    // The points' cells at this angle with the lattice's central translation.
+    const double th = prior.mean.theta + t * l.st;
+    const double c = std::cos(th), s = std::sin(th);
+    for (size_t i = 0; i < pts.size(); ++i) {
+      bx[i] = MatchField::floor_cell((prior.mean.x + c * pts[i].x - s * pts[i].y) / res);
+      by[i] = MatchField::floor_cell((prior.mean.y + s * pts[i].x + c * pts[i].y) / res);
+    }
+    for (int y = -l.ny; y <= l.ny; ++y)
+      for (int x = -l.nx; x <= l.nx; ++x) {
+        const Eigen::Vector3d e(x * l.sx, y * l.sx, t * l.st);
+        if (e.dot(S_inv * e) > opt_.gate) continue;
+        double score = 0.0;
+        for (size_t i = 0; i < pts.size(); ++i)
+          score -= cost[field.distance(bx[i] + x * l.step_cells, by[i] + y * l.step_cells)];
+        cands.push_back({score, Pose2D(prior.mean.x + e.x(), prior.mean.y + e.y(),
+                                       wrap_angle(th))});
+      }
+  }
+  return separated_maxima(std::move(cands), l, opt_.search_modes);
 }
 
 bool TransitionModel::same_area(const topology::Area& area, const Pose2D& robot,
@@ -134,7 +184,14 @@ bool TransitionModel::same_area(const topology::Area& area, const Pose2D& robot,
 }
 
 ExpectedLikelihood TransitionModel::expected_likelihood(
-    const grid::OccupancyGrid& map, const PoseGaussian& prior_in,
+    const grid::OccupancyGrid& map, const PoseGaussian& prior,
+    const Observations& observations) const {
+  return expected_likelihood(map, MatchField(map, matcher_.occupied_threshold()), prior,
+                             observations);
+}
+
+ExpectedLikelihood TransitionModel::expected_likelihood(
+    const grid::OccupancyGrid& map, const MatchField& field, const PoseGaussian& prior_in,
     const Observations& observations) const {
   ExpectedLikelihood out;
   const metric_slam::ScanPoints& obs = observations.points;
@@ -146,6 +203,13 @@ ExpectedLikelihood TransitionModel::expected_likelihood(
   prior.cov.diagonal() += Eigen::Vector3d(opt_.prior_std_xy * opt_.prior_std_xy,
                                           opt_.prior_std_xy * opt_.prior_std_xy,
                                           opt_.prior_std_theta * opt_.prior_std_theta);
+  // No mode can pass the ratio gate if no pose in the prior's gate lets
+  // enough points reach an obstacle: not a candidate, as the matching below
+  // would conclude, at a fraction of its cost.
+  if (opt_.bound_boxes > 0 &&
+      !may_reach_ratio(field, obs.hit, prior, opt_.gate, opt_.min_match_ratio,
+                       matcher_.options().window, opt_.bound_boxes))
+    return out;
   const Eigen::Matrix3d S = prior.cov;
   const Eigen::Matrix3d S_inv = S.inverse();
   // l0: every point at the truncation distance (an empty map explains none).
@@ -163,7 +227,7 @@ ExpectedLikelihood TransitionModel::expected_likelihood(
   // A prior much wider than the matcher's basin (a long loop) is searched
   // on a lattice first.
   if (std::max(prior.cov(0, 0), prior.cov(1, 1)) > 0.3 * 0.3 || prior.cov(2, 2) > 0.1 * 0.1) {
-    const std::vector<Pose2D> wide = wide_search(map, prior, obs);
+    const std::vector<Pose2D> wide = wide_search(field, prior, obs);
     starts.insert(starts.begin() + 1, wide.begin(), wide.end());
   }
   for (const Pose2D& start : starts) {
@@ -205,12 +269,11 @@ ExpectedLikelihood TransitionModel::expected_likelihood(
   return out;
 }
 
-std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
-                                               AreaId current,
-                                               const PoseGaussian& robot,
-                                               const Observations& obs) const {
-  std::vector<Outcome> outcomes(1);
-  outcomes[0].log_f = opt_.log_eta;
+std::vector<Outcome> TransitionModel::reachable_areas(const topology::HmtMap& map,
+                                                      AreaId current,
+                                                      const PoseGaussian& robot,
+                                                      const Observations& obs) const {
+  std::vector<Outcome> out;
   // Where every other area's frame lies, seen from the current area.
   const topology::PathTree tree = topology::shortest_paths(map, current);
   // How far the observations reach from the robot.
@@ -236,15 +299,59 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
     const double dx = std::max({lo.x * res - o.prior.mean.x, 0.0, o.prior.mean.x - (hi.x + 1) * res});
     const double dy = std::max({lo.y * res - o.prior.mean.y, 0.0, o.prior.mean.y - (hi.y + 1) * res});
     if (std::hypot(dx, dy) > reach) continue;
-    const ExpectedLikelihood f = expected_likelihood(*area_map, o.prior, obs);
-    if (!f.candidate) continue;
-    if (opt_.area_check && !same_area(map.area(id), f.robot.mean, obs)) continue;
-    o.log_f = f.log_f;
-    o.robot = f.robot;
-    o.match_ratio = f.match_ratio;
-    o.modes = f.modes;
-    outcomes.push_back(o);
+    out.push_back(o);
   }
+  return out;
+}
+
+std::vector<std::shared_ptr<const MatchField>> TransitionModel::fields_for(
+    const topology::HmtMap& map, const std::vector<Outcome>& areas) {
+  // A map only the cache still holds belongs to no hypothesis any more.
+  for (auto it = fields_.begin(); it != fields_.end();)
+    it = it->second.map.use_count() == 1 ? fields_.erase(it) : std::next(it);
+  std::vector<std::shared_ptr<const grid::OccupancyGrid>> missing;
+  for (const Outcome& o : areas) {
+    const auto& m = map.area(o.area).map;
+    if (!fields_.count(m.get()) && std::find(missing.begin(), missing.end(), m) == missing.end())
+      missing.push_back(m);
+  }
+  std::vector<std::shared_ptr<const MatchField>> built(missing.size());
+  for_each_index(missing.size(), [&](size_t i) {
+    built[i] = std::make_shared<const MatchField>(*missing[i], matcher_.occupied_threshold());
+  });
+  for (size_t i = 0; i < missing.size(); ++i) fields_[missing[i].get()] = {missing[i], built[i]};
+  std::vector<std::shared_ptr<const MatchField>> out;
+  for (const Outcome& o : areas) out.push_back(fields_.at(map.area(o.area).map.get()).field);
+  return out;
+}
+
+bool TransitionModel::weigh(const topology::Area& area, const MatchField& field,
+                            const Observations& obs, Outcome* o) const {
+  const ExpectedLikelihood f = expected_likelihood(*area.map, field, o->prior, obs);
+  if (!f.candidate) return false;
+  if (opt_.area_check && !same_area(area, f.robot.mean, obs)) return false;
+  o->log_f = f.log_f;
+  o->robot = f.robot;
+  o->match_ratio = f.match_ratio;
+  o->modes = f.modes;
+  return true;
+}
+
+std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
+                                               AreaId current,
+                                               const PoseGaussian& robot,
+                                               const Observations& obs) {
+  std::vector<Outcome> outcomes(1);
+  outcomes[0].log_f = opt_.log_eta;
+  std::vector<Outcome> areas = reachable_areas(map, current, robot, obs);
+  const auto fields = fields_for(map, areas);
+  // Each area is weighed on its own: the order of the threads cannot matter.
+  std::vector<char> candidate(areas.size(), 0);
+  for_each_index(areas.size(), [&](size_t i) {
+    candidate[i] = weigh(map.area(areas[i].area), *fields[i], obs, &areas[i]);
+  });
+  for (size_t i = 0; i < areas.size(); ++i)
+    if (candidate[i]) outcomes.push_back(std::move(areas[i]));
   std::vector<double> lf;
   for (const Outcome& o : outcomes) lf.push_back(o.log_f);
   const double z = log_sum_exp(lf);

@@ -22,12 +22,14 @@ void TsbiOptions::load(Config& cfg, const std::string& s) {
   search_points = cfg.get_int(s, "search_points", search_points);
   search_max_poses = cfg.get_int(s, "search_max_poses", search_max_poses);
   search_modes = cfg.get_int(s, "search_modes", search_modes);
+  bound_boxes = cfg.get_int(s, "bound_boxes", bound_boxes);
   require(area_check_keyframes >= 1, s, "area_check_keyframes", ">= 1");
   require(search_step_xy > 0, s, "search_step_xy", "> 0");
   require(search_step_theta > 0, s, "search_step_theta", "> 0");
   require(search_points >= 10, s, "search_points", ">= 10");
   require(search_max_poses >= 1000, s, "search_max_poses", ">= 1000");
   require(search_modes >= 1 && search_modes <= 100, s, "search_modes", "in [1, 100]");
+  require(bound_boxes >= 0, s, "bound_boxes", ">= 0 (0: off)");
   require(std::isfinite(log_eta), s, "log_eta", "finite");
   require(min_match_ratio > 0 && min_match_ratio <= 1, s, "min_match_ratio", "in (0, 1]");
   require(gate > 0, s, "gate", "> 0");

@@ -4,9 +4,7 @@
 
 #include <memory>
 
-#include "../../metric_slam/tests/sim_world.h"
-#include "hmt/grid/scan_insertion.h"
-#include "hmt/tsbi/observations.h"
+#include "test_maps.h"
 
 namespace hmt::tsbi {
 namespace {
@@ -14,25 +12,9 @@ namespace {
 using topology::AreaId;
 using topology::HmtMap;
 using topology::PoseGaussian;
-
-LaserScan scan_at(const std::vector<testing_sim::Segment>& world, const Pose2D& p) {
-  return testing_sim::cast_scan(world, p, 361, M_PI, 30.0, nullptr, 0.0);
-}
-
-// A map of `world` in the frame whose origin is the world pose `origin`,
-// from scans taken at the given world poses.
-std::shared_ptr<const grid::OccupancyGrid> map_of(
-    const std::vector<testing_sim::Segment>& world, const Pose2D& origin,
-    const std::vector<Pose2D>& poses) {
-  auto g = std::make_shared<grid::OccupancyGrid>(0.05);
-  for (const Pose2D& p : poses)
-    grid::insert_scan(*g, p - origin, scan_at(world, p), grid::InsertionOptions{});
-  return g;
-}
-
-Eigen::Matrix3d diag(double sxy, double sth) {
-  return Eigen::Vector3d(sxy * sxy, sxy * sxy, sth * sth).asDiagonal();
-}
+using test_maps::diag;
+using test_maps::map_of;
+using test_maps::observe;
 
 // Area 1: the left part of the office (frame = world). Area 2: its right
 // part, frame at world (10, 2, 0.3). Area 3, the current one: frame at world
@@ -53,19 +35,27 @@ struct TwoKnownAreas {
   }
 };
 
-TransitionModel model(double log_eta = 10.0) {
+TransitionModel model(double log_eta = 10.0, int bound_boxes = TsbiOptions{}.bound_boxes,
+                      std::shared_ptr<metric_slam::WorkerPool> pool = nullptr) {
   TsbiOptions o;
   o.log_eta = log_eta;
-  return TransitionModel(o, metric_slam::MatcherOptions{}, 30.0, area::AreaOptions{});
+  o.bound_boxes = bound_boxes;
+  return TransitionModel(o, metric_slam::MatcherOptions{}, 30.0, area::AreaOptions{},
+                         std::move(pool));
 }
 
-Observations observe(const std::vector<testing_sim::Segment>& world,
-                                const std::vector<Pose2D>& poses) {
-  std::vector<LaserScan> scans;
-  for (const Pose2D& p : poses) scans.push_back(scan_at(world, p));
-  std::vector<PosedScan> posed;
-  for (size_t i = 0; i < poses.size(); ++i) posed.push_back({poses[i], &scans[i]});
-  return gather_observations(posed, poses.back(), 20.0, 0.05, 600);
+// The outcomes agree in every field the hybrid filter uses.
+void expect_same_outcomes(const std::vector<Outcome>& a, const std::vector<Outcome>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].area, b[i].area);
+    EXPECT_EQ(a[i].log_f, b[i].log_f);
+    EXPECT_EQ(a[i].probability, b[i].probability);
+    EXPECT_EQ(a[i].robot.mean.x, b[i].robot.mean.x);
+    EXPECT_EQ(a[i].robot.mean.theta, b[i].robot.mean.theta);
+    EXPECT_EQ(a[i].robot.cov, b[i].robot.cov);
+    EXPECT_EQ(a[i].modes, b[i].modes);
+  }
 }
 
 TEST(TransitionModel, KnownAreaAgainWinsWhereTheObservationsMatchIt) {
@@ -158,6 +148,60 @@ TEST(TransitionModel, TheCurrentAreaAndAreasWithoutMapsAreNotCandidates) {
   // Area 3 has no map: never a candidate.
   const auto out1 = model().evaluate(s.map, 1, PoseGaussian(truth, diag(0.1, 0.05)), obs);
   for (const auto& o : out1) EXPECT_NE(o.area, 3u);
+}
+
+// A scene where area 1 explains the observations (under a broad prior, so
+// the wide search runs too) and area 2, elsewhere in the office, cannot.
+struct ReturnToAreaOne {
+  TwoKnownAreas s;
+  Observations obs =
+      observe(testing_sim::office_world(), {{2.0, 2.8, 0.2}, {2.5, 2.9, 0.2}, {3, 3, 0.2}});
+  PoseGaussian robot{(Pose2D(3, 3, 0.2) - s.origin3) + Pose2D(0.3, -0.2, 0.08),
+                     diag(0.4, 0.12)};
+};
+
+TEST(TransitionModel, SkippingHopelessAreasChangesNoOutcome) {
+  ReturnToAreaOne r;
+  const auto full = model(10.0, 0).evaluate(r.s.map, 3, r.robot, r.obs);
+  const auto pruned = model(10.0).evaluate(r.s.map, 3, r.robot, r.obs);
+  ASSERT_GE(full.size(), 2u);
+  EXPECT_EQ(full[1].area, 1u);
+  expect_same_outcomes(full, pruned);
+  // Observations from a corridor nothing mapped: both find no candidate.
+  const auto corridor = observe(testing_sim::corridor_world(), {{10, 1.5, 0.0}, {10.5, 1.5, 0.0}});
+  EXPECT_EQ(model(10.0, 0).evaluate(r.s.map, 3, r.robot, corridor).size(), 1u);
+  EXPECT_EQ(model(10.0).evaluate(r.s.map, 3, r.robot, corridor).size(), 1u);
+}
+
+TEST(TransitionModel, SameOutcomesWhateverTheThreads) {
+  ReturnToAreaOne r;
+  const auto alone = model().evaluate(r.s.map, 3, r.robot, r.obs);
+  const auto pooled = model(10.0, TsbiOptions{}.bound_boxes,
+                            std::make_shared<metric_slam::WorkerPool>(3))
+                          .evaluate(r.s.map, 3, r.robot, r.obs);
+  ASSERT_GE(alone.size(), 2u);
+  expect_same_outcomes(alone, pooled);
+}
+
+TEST(TransitionModel, KeepsTheMatchFieldsOfHeldMapsOnly) {
+  ReturnToAreaOne r;
+  TransitionModel m = model();
+  const auto first = m.evaluate(r.s.map, 3, r.robot, r.obs);
+  EXPECT_EQ(m.cached_fields(), 2u);  // areas 1 and 2
+  // Reused: the same outcomes from the cached fields.
+  expect_same_outcomes(first, m.evaluate(r.s.map, 3, r.robot, r.obs));
+  // Area 2's map replaced (as when it is archived again): its old field goes.
+  r.s.map.set_map(2, map_of(testing_sim::office_world(), r.s.origin2, {{12, 3, 0}}));
+  m.evaluate(r.s.map, 3, r.robot, r.obs);
+  EXPECT_EQ(m.cached_fields(), 2u);
+  {
+    HmtMap other = r.s.map;  // shares both maps
+    other.set_map(1, map_of(testing_sim::office_world(), Pose2D(), {{2, 2, 0}}));
+    m.evaluate(other, 3, r.robot, r.obs);
+    EXPECT_EQ(m.cached_fields(), 3u);  // area 1's two maps are both held
+  }
+  m.evaluate(r.s.map, 3, r.robot, r.obs);
+  EXPECT_EQ(m.cached_fields(), 2u);  // `other`'s map of area 1 died with it
 }
 
 TEST(ProbableOutcomes, KeepsThoseAboveTheThresholdOrTheBest) {

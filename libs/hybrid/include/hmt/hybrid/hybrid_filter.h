@@ -202,7 +202,9 @@ class HybridFilter {
   HmtOptions opt_;
   std::shared_ptr<metric_slam::WorkerPool> pool_;
   area::OnlinePartitioner aam_;
-  tsbi::TransitionModel tsbi_;
+  // Mutable: its cache of the areas' match fields is used and updated by
+  // evaluate() alone (on the TSBI thread, in the framework).
+  mutable tsbi::TransitionModel tsbi_;
   std::vector<Hypothesis> hyps_;  // ascending id
   uint32_t next_hypothesis_id_ = 0;
   std::vector<KeyframeRecord> keyframes_;  // by AAM keyframe id

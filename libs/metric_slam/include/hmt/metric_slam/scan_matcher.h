@@ -62,6 +62,8 @@ class ScanMatcher {
   Eigen::Matrix3d information(const grid::OccupancyGrid& map, const Pose2D& pose,
                               const ScanPoints& scan, int* matched = nullptr) const;
   const MatcherOptions& options() const { return opt_; }
+  // A cell at or above this log-odds is an obstacle to match against.
+  grid::LogOdds occupied_threshold() const { return occ_threshold_; }
 
  private:
   MatchScore score(const grid::OccupancyGrid& map, const Pose2D& pose,

@@ -41,15 +41,32 @@
 // by the same criterion (Ncut({latest}, {area}) >= tau, with the same SSO).
 // A true return passes (the latest scans overlap the area's as much as its
 // own do); a neighbour seen across the border does not.
+//
+// What it costs, and what is skipped. Most known areas cannot explain the
+// latest observations anywhere in their prior (they lie elsewhere in the
+// building, or only overlap it at the border). Before matching, a branch
+// and bound on the area's obstacle raster (match_field.h) proves, for most
+// of them, that no pose in the prior's gate lets min_match_ratio of the
+// points reach an obstacle: no mode could pass the ratio gate, so the area
+// is not a candidate -- the answer the full evaluation would give, without
+// the matching. The wide search scores its lattice on the same raster (one
+// lookup per point). Rasters are built once per archived map and kept while
+// a hypothesis holds the map; the candidates are weighed in parallel on the
+// worker pool (each alone, so the result does not depend on the threads).
 #pragma once
 
+#include <functional>
+#include <map>
+#include <memory>
 #include <vector>
 
 #include "hmt/area/area_options.h"
 #include "hmt/metric_slam/scan_matcher.h"
 #include "hmt/metric_slam/scan_points.h"
+#include "hmt/metric_slam/worker_pool.h"
 #include "hmt/topology/hmt_map.h"
 #include "hmt/topology/pose_gaussian.h"
+#include "hmt/tsbi/match_field.h"
 #include "hmt/tsbi/observations.h"
 #include "hmt/tsbi/tsbi_options.h"
 
@@ -80,42 +97,73 @@ struct ExpectedLikelihood {
 class TransitionModel {
  public:
   // `likelihood_gain` divides log-likelihoods, as in the metric filter;
-  // `area` gives the SSO and tau of the area check.
+  // `area` gives the SSO and tau of the area check; `pool`, if any, weighs
+  // the candidate areas in parallel.
   TransitionModel(const TsbiOptions& options,
                   const metric_slam::MatcherOptions& matcher,
-                  double likelihood_gain, const area::AreaOptions& area);
+                  double likelihood_gain, const area::AreaOptions& area,
+                  std::shared_ptr<metric_slam::WorkerPool> pool = nullptr);
 
   // The outcomes for a hypothesis whose map is `map`, whose robot is in area
   // `current` at `robot` (in that area's frame) and has just made the
   // observations `obs` (points in the robot frame). The new-area outcome
   // comes first, known areas (the candidates) follow in ascending id; the
-  // probabilities sum to 1.
+  // probabilities sum to 1. Not const: it keeps the areas' match fields.
   std::vector<Outcome> evaluate(const topology::HmtMap& map,
                                 topology::AreaId current,
                                 const topology::PoseGaussian& robot,
-                                const Observations& obs) const;
+                                const Observations& obs);
 
   ExpectedLikelihood expected_likelihood(const grid::OccupancyGrid& map,
                                          const topology::PoseGaussian& prior,
                                          const Observations& obs) const;
 
   const TsbiOptions& options() const { return opt_; }
+  // Match fields held (for tests and memory accounting).
+  size_t cached_fields() const { return fields_.size(); }
 
  private:
+  // The known areas the observations can reach from the prior's gate, each
+  // with its prior (robot pose in the area's frame, from the arcs).
+  std::vector<Outcome> reachable_areas(const topology::HmtMap& map,
+                                       topology::AreaId current,
+                                       const topology::PoseGaussian& robot,
+                                       const Observations& obs) const;
+  // The match field of each area's map: from the cache, or built (in
+  // parallel) and cached. Fields of maps no hypothesis holds are dropped.
+  std::vector<std::shared_ptr<const MatchField>> fields_for(
+      const topology::HmtMap& map, const std::vector<Outcome>& areas);
+  // Fills log F, the mode and its ratio of a reachable area; false if the
+  // area is not a candidate.
+  bool weigh(const topology::Area& area, const MatchField& field, const Observations& obs,
+             Outcome* o) const;
+  ExpectedLikelihood expected_likelihood(const grid::OccupancyGrid& map,
+                                         const MatchField& field,
+                                         const topology::PoseGaussian& prior,
+                                         const Observations& obs) const;
   // The best-scoring poses of a lattice over the prior's gate.
-  std::vector<Pose2D> wide_search(const grid::OccupancyGrid& map,
+  std::vector<Pose2D> wide_search(const MatchField& field,
                                   const topology::PoseGaussian& prior,
                                   const metric_slam::ScanPoints& obs) const;
   // The area check of TsbiOptions::area_check, with the robot at `robot` in
   // the area's frame.
   bool same_area(const topology::Area& area, const Pose2D& robot,
                  const Observations& obs) const;
+  // fn(i) for i in [0, n), on the pool if there is one.
+  void for_each_index(size_t n, const std::function<void(size_t)>& fn) const;
 
   TsbiOptions opt_;
   metric_slam::ScanMatcher matcher_;
-  metric_slam::ScanMatcher wide_;  // wider window, for the lattice search
   double gain_;
   area::AreaOptions area_;
+  std::shared_ptr<metric_slam::WorkerPool> pool_;
+  // Match fields by map. The entry holds the map too, so that its address
+  // cannot be reused by another map while the entry lives.
+  struct CachedField {
+    std::shared_ptr<const grid::OccupancyGrid> map;
+    std::shared_ptr<const MatchField> field;
+  };
+  std::map<const grid::OccupancyGrid*, CachedField> fields_;
 };
 
 // The outcomes worth following: indices of those with probability >=

@@ -48,6 +48,11 @@ struct TsbiOptions {
   int search_points = 80;
   int search_max_poses = 50000;     // the lattice is coarsened beyond this
   int search_modes = 8;              // maxima refined
+  // Before matching, a branch and bound proves for most hopeless areas that
+  // no pose in the gate lets min_match_ratio of the points reach an
+  // obstacle (match_field.h); it gives up (and the area is matched) after
+  // this many boxes of poses. 0: never skip an area.
+  int bound_boxes = 5000;
   // Outcomes less probable than this are dropped (and the rest
   // renormalised).
   double min_probability = 1e-3;

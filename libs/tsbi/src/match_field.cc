@@ -1,0 +1,177 @@
+#include "hmt/tsbi/match_field.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <climits>
+#include <cmath>
+
+namespace hmt::tsbi {
+namespace {
+
+// Calls f(x, y) for every cell of `map` at or above `occupied`.
+template <class F>
+void for_each_obstacle(const grid::OccupancyGrid& map, grid::LogOdds occupied, F&& f) {
+  using grid::kTileBits;
+  using grid::kTileSize;
+  grid::CellIndex lo, hi;
+  if (!map.bounds(&lo, &hi)) return;
+  for (int ty = lo.y >> kTileBits; ty <= hi.y >> kTileBits; ++ty)
+    for (int tx = lo.x >> kTileBits; tx <= hi.x >> kTileBits; ++tx) {
+      const grid::Tile* t = map.tile(tx, ty);
+      if (!t) continue;
+      for (int j = 0; j < kTileSize; ++j)
+        for (int i = 0; i < kTileSize; ++i)
+          if (t->cells[static_cast<size_t>((j << kTileBits) | i)].logodds >= occupied)
+            f(tx * kTileSize + i, ty * kTileSize + j);
+    }
+}
+
+}  // namespace
+
+MatchField::MatchField(const grid::OccupancyGrid& map, grid::LogOdds occupied)
+    : resolution_(map.resolution()), inv_resolution_(1.0 / map.resolution()) {
+  int x0 = INT_MAX, y0 = INT_MAX, x1 = INT_MIN, y1 = INT_MIN;
+  for_each_obstacle(map, occupied, [&](int x, int y) {
+    x0 = std::min(x0, x);
+    y0 = std::min(y0, y);
+    x1 = std::max(x1, x);
+    y1 = std::max(y1, y);
+  });
+  if (x0 > x1) return;  // no obstacle: nothing can ever match
+  x0_ = x0;
+  y0_ = y0;
+  w_ = x1 - x0 + 1;
+  h_ = y1 - y0 + 1;
+  d_.assign(static_cast<size_t>(w_) * h_, kFar);
+  for_each_obstacle(map, occupied, [&](int x, int y) {
+    d_[static_cast<size_t>(y - y0_) * w_ + (x - x0_)] = 0;
+  });
+  // Two-pass chessboard distance transform: exact for the Chebyshev metric
+  // on a rectangle (each pass propagates from the 4 neighbours it has seen).
+  auto at = [&](int x, int y) -> uint8_t& { return d_[static_cast<size_t>(y) * w_ + x]; };
+  auto relax = [&](uint8_t& v, int x, int y) {
+    if (x >= 0 && x < w_ && y >= 0 && y < h_) v = static_cast<uint8_t>(std::min<int>(v, at(x, y) + 1));
+  };
+  for (int y = 0; y < h_; ++y)
+    for (int x = 0; x < w_; ++x) {
+      uint8_t& v = at(x, y);
+      relax(v, x - 1, y);
+      relax(v, x - 1, y - 1);
+      relax(v, x, y - 1);
+      relax(v, x + 1, y - 1);
+    }
+  for (int y = h_ - 1; y >= 0; --y)
+    for (int x = w_ - 1; x >= 0; --x) {
+      uint8_t& v = at(x, y);
+      relax(v, x + 1, y);
+      relax(v, x + 1, y + 1);
+      relax(v, x, y + 1);
+      relax(v, x - 1, y + 1);
+    }
+}
+
+int MatchField::outside_distance(int ix, int iy) const {
+  if (d_.empty()) return kFar;
+  const int dx = ix < 0 ? -ix : std::max(0, ix - w_ + 1);
+  const int dy = iy < 0 ? -iy : std::max(0, iy - h_ + 1);
+  return std::min(kFar, std::max(dx, dy));
+}
+
+namespace {
+
+// A box of poses around the prior mean: offsets c +- h (x, y, theta).
+struct Box {
+  Eigen::Vector3d c, h;
+};
+
+}  // namespace
+
+bool may_reach_ratio(const MatchField& field, const std::vector<Point2D>& points,
+                     const topology::PoseGaussian& prior, double gate, double min_ratio,
+                     int window, int max_boxes) {
+  const size_t n = points.size();
+  if (n == 0 || !field.has_obstacles()) return false;
+  const double res = field.resolution();
+  std::vector<double> range(n);
+  double r_sum = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    range[i] = std::hypot(points[i].x, points[i].y);
+    r_sum += range[i];
+  }
+  const double r_mean = r_sum / static_cast<double>(n);
+  // The same test as the ratio gate it stands for: matched / n >= min_ratio.
+  auto passes = [&](size_t count) {
+    return static_cast<double>(count) / static_cast<double>(n) >= min_ratio;
+  };
+  // An upper bound on the points matched anywhere in the box (a partial
+  // count once it cannot pass any more).
+  auto bound = [&](const Box& b) {
+    const double th = prior.mean.theta + b.c.z();
+    const double cs = std::cos(th), sn = std::sin(th);
+    const double px = prior.mean.x + b.c.x(), py = prior.mean.y + b.c.y();
+    const double dxy = std::hypot(b.h.x(), b.h.y());
+    size_t count = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const Point2D& p = points[i];
+      const int reach = window + static_cast<int>(std::ceil((dxy + range[i] * b.h.z()) / res));
+      if (field.distance_at(px + cs * p.x - sn * p.y, py + sn * p.x + cs * p.y) <= reach)
+        ++count;
+      else if (!passes(count + (n - 1 - i)))
+        break;
+    }
+    return count;
+  };
+  // A box lies outside the gate if even its nearest point does:
+  // |L^-1 (c + d)| >= |L^-1 c| - sum_j h_j |column j of L^-1|.
+  const Eigen::Matrix3d L_inv = Eigen::Matrix3d(prior.cov.llt().matrixL()).inverse();
+  const Eigen::Vector3d col_norms = L_inv.colwise().norm().transpose();
+  auto outside_gate = [&](const Box& b) {
+    const double m = (L_inv * b.c).norm() - col_norms.dot(b.h);
+    return m > 0 && m * m > gate;
+  };
+  // Small enough to stop: the pose moves a point at the mean range by two
+  // cells at most. (Any rule is sound here: stopping only means "maybe";
+  // finer boxes would rarely turn a maybe into a proof, at many boxes' cost.)
+  auto smallest = [&](const Box& b) {
+    return std::hypot(b.h.x(), b.h.y()) + r_mean * b.h.z() <= 2 * res;
+  };
+
+  Box root{Eigen::Vector3d::Zero(),
+           Eigen::Vector3d(std::sqrt(gate * prior.cov(0, 0)), std::sqrt(gate * prior.cov(1, 1)),
+                           std::min(M_PI, std::sqrt(gate * prior.cov(2, 2))))};
+  if (!passes(bound(root))) return false;
+  // Depth first, the most promising child first: a pose that passes is
+  // usually found quickly when there is one.
+  std::vector<Box> stack{root};
+  int boxes = 1;
+  while (!stack.empty()) {
+    const Box b = stack.back();
+    stack.pop_back();
+    if (smallest(b)) return true;
+    std::vector<Box> children;
+    const Eigen::Vector3d q = 0.5 * b.h;
+    if (std::hypot(b.h.x(), b.h.y()) >= r_mean * b.h.z()) {
+      for (int sx = -1; sx <= 1; sx += 2)
+        for (int sy = -1; sy <= 1; sy += 2)
+          children.push_back({b.c + Eigen::Vector3d(sx * q.x(), sy * q.y(), 0.0),
+                              Eigen::Vector3d(q.x(), q.y(), b.h.z())});
+    } else {
+      for (int st = -1; st <= 1; st += 2)
+        children.push_back({b.c + Eigen::Vector3d(0.0, 0.0, st * q.z()),
+                            Eigen::Vector3d(b.h.x(), b.h.y(), q.z())});
+    }
+    std::vector<std::pair<size_t, Box>> alive;
+    for (const Box& c : children) {
+      if (outside_gate(c)) continue;
+      if (++boxes > max_boxes) return true;  // no proof within the budget
+      const size_t count = bound(c);
+      if (passes(count)) alive.emplace_back(count, c);
+    }
+    std::stable_sort(alive.begin(), alive.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& a : alive) stack.push_back(a.second);
+  }
+  return false;
+}
+
+}  // namespace hmt::tsbi
