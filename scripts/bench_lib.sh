@@ -86,7 +86,8 @@ bench_rss_mb() {
 # bench_ratio A B [DIGITS]: A/B, or "-" when either is missing or B is zero.
 bench_ratio() {
   awk -v a="$1" -v b="$2" -v d="${3:-2}" 'BEGIN {
-    if (a !~ /^[0-9.eE+-]+$/ || b !~ /^[0-9.eE+-]+$/ || b + 0 == 0) { print "-"; exit }
+    num = "^[-+]?[0-9]*[.]?[0-9]+([eE][-+]?[0-9]+)?$"  # "-" (no figure) is not a number
+    if (a !~ num || b !~ num || b + 0 == 0) { print "-"; exit }
     printf "%.*f\n", d, a / b }'
 }
 
