@@ -103,8 +103,8 @@ bool may_reach_ratio(const MatchField& field, const std::vector<Point2D>& points
   auto passes = [&](size_t count) {
     return static_cast<double>(count) / static_cast<double>(n) >= min_ratio;
   };
-  // An upper bound on the points matched anywhere in the box (a partial
-  // count once it cannot pass any more).
+  // An upper bound on the points matched anywhere in the box; counting
+  // stops as soon as the box is known to pass or to fail.
   auto bound = [&](const Box& b) {
     const double th = prior.mean.theta + b.c.z();
     const double cs = std::cos(th), sn = std::sin(th);
@@ -114,10 +114,11 @@ bool may_reach_ratio(const MatchField& field, const std::vector<Point2D>& points
     for (size_t i = 0; i < n; ++i) {
       const Point2D& p = points[i];
       const int reach = window + static_cast<int>(std::ceil((dxy + range[i] * b.h.z()) / res));
-      if (field.distance_at(px + cs * p.x - sn * p.y, py + sn * p.x + cs * p.y) <= reach)
-        ++count;
-      else if (!passes(count + (n - 1 - i)))
+      if (field.distance_at(px + cs * p.x - sn * p.y, py + sn * p.x + cs * p.y) <= reach) {
+        if (passes(++count)) break;
+      } else if (!passes(count + (n - 1 - i))) {
         break;
+      }
     }
     return count;
   };
@@ -140,8 +141,8 @@ bool may_reach_ratio(const MatchField& field, const std::vector<Point2D>& points
            Eigen::Vector3d(std::sqrt(gate * prior.cov(0, 0)), std::sqrt(gate * prior.cov(1, 1)),
                            std::min(M_PI, std::sqrt(gate * prior.cov(2, 2))))};
   if (!passes(bound(root))) return false;
-  // Depth first, the most promising child first: a pose that passes is
-  // usually found quickly when there is one.
+  // Depth first, the child nearest the prior mean first: when the area is
+  // the right one, a box that passes is usually found there quickly.
   std::vector<Box> stack{root};
   int boxes = 1;
   while (!stack.empty()) {
@@ -160,15 +161,14 @@ bool may_reach_ratio(const MatchField& field, const std::vector<Point2D>& points
         children.push_back({b.c + Eigen::Vector3d(0.0, 0.0, st * q.z()),
                             Eigen::Vector3d(b.h.x(), b.h.y(), q.z())});
     }
-    std::vector<std::pair<size_t, Box>> alive;
+    std::vector<std::pair<double, Box>> alive;
     for (const Box& c : children) {
       if (outside_gate(c)) continue;
       if (++boxes > max_boxes) return true;  // no proof within the budget
-      const size_t count = bound(c);
-      if (passes(count)) alive.emplace_back(count, c);
+      if (passes(bound(c))) alive.emplace_back((L_inv * c.c).squaredNorm(), c);
     }
     std::stable_sort(alive.begin(), alive.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
     for (const auto& a : alive) stack.push_back(a.second);
   }
   return false;

@@ -45,7 +45,9 @@ struct TsbiOptions {
   // with a wide window) and the best local maxima are refined.
   double search_step_xy = 0.2;       // [m]
   double search_step_theta = 0.03;   // [rad]
-  int search_points = 80;
+  // Each lattice pose costs one raster lookup per point (match_field.h):
+  // 200 points separate the right place from a look-alike better than 80.
+  int search_points = 200;
   int search_max_poses = 50000;     // the lattice is coarsened beyond this
   int search_modes = 8;              // maxima refined
   // Before matching, a branch and bound proves for most hopeless areas that
