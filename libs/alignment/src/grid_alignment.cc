@@ -273,7 +273,9 @@ std::vector<Point2D> occupied_points(const grid::OccupancyGrid& grid,
       if (!t) continue;
       for (int j = 0; j < grid::kTileSize; ++j)
         for (int i = 0; i < grid::kTileSize; ++i) {
-          const CellIndex c{(tx << grid::kTileBits) + i, (ty << grid::kTileBits) + j};
+          // Tile indices are negative left of and below the origin: multiply
+          // (a left shift of a negative int is undefined in C++17).
+          const CellIndex c{tx * grid::kTileSize + i, ty * grid::kTileSize + j};
           const Cell& cell = OccupancyGrid::cell_in(*t, c);
           if (is_point(cell)) out.push_back(grid.hit_mean(c, cell));
         }
