@@ -270,8 +270,11 @@ TEST(Partition, MalagaAreasAreStretchesOfTheRoute) {
   for (int g = 0; g < G; ++g)
     EXPECT_LT(diameter(p.members[g], p.pose), length / 6.0) << "group " << g;
   // Grouping time (SSO matrix + recursive Ncut) well within the target of
-  // 0.25 s per 100 scans grouped (a generous bound: the machine may be busy).
+  // 0.25 s per 100 scans grouped (a generous bound: the machine may be busy;
+  // none under sanitizers, which slow everything several times).
+#ifndef HMT_SANITIZED
   EXPECT_LT(p.summary["grouping_s_per_100_keyframes"].get<double>(), 0.25);
+#endif
 }
 
 TEST(Partition, MalagaIsDeterministicAndLowerTauCoarsens) {
