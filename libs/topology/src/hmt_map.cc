@@ -1,9 +1,22 @@
 #include "hmt/topology/hmt_map.h"
 
+#include <atomic>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+
+#if defined(__SANITIZE_THREAD__)
+#define HMT_TSAN 1
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+#define HMT_TSAN 1
+#endif
+#endif
+#ifndef HMT_TSAN
+#define HMT_TSAN 0
+#endif
 
 namespace hmt::topology {
 namespace {
@@ -57,9 +70,21 @@ Area& HmtMap::writable(AreaId id) {
   const auto it = areas_.find(id);
   if (it == areas_.end())
     throw std::out_of_range("HmtMap: unknown " + name(id));
-  // Shared with a copy of this map: clone before writing.
-  if (it->second.use_count() > 1)
+  // Shared with a copy of this map (another hypothesis, or a snapshot held
+  // by the TSBI or TLCA thread): clone before writing.
+  if (it->second.use_count() > 1) {
     it->second = std::make_shared<Area>(*it->second);
+  } else {
+    // Sole owner: a copy on another thread that was just released read this
+    // area; pair with that release before writing in place.
+#if HMT_TSAN
+    // ThreadSanitizer ignores fences: acquire through the count itself (a
+    // copy and its release are read-modify-writes of the use count).
+    std::shared_ptr<Area>(it->second).reset();
+#else
+    std::atomic_thread_fence(std::memory_order_acquire);
+#endif
+  }
   return *it->second;
 }
 
