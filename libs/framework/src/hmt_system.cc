@@ -134,13 +134,7 @@ void HmtSystem::on_step(StepMsg& m) {
     if (framework_.mode == Mode::kDeterministic) on_decision(wait_reply(decisions_, "area abstraction"));
   }
   if (framework_.mode == Mode::kLive) poll_replies();
-  if (std::optional<hybrid::AlignmentJob> job = filter_.accept_if_dominant()) {
-    ++alignments_outstanding_;
-    if (!tlca_.post({std::move(*job), {}}))
-      throw Error(ExitCode::kInternal, "loop-closure acceptance stopped");
-    if (framework_.mode == Mode::kDeterministic)
-      on_alignment_result(wait_reply(alignment_results_, "loop-closure acceptance"));
-  }
+  accept_if_dominant();
   record_step(m.index, m.step.timestamp, m.index % memory_every_ == 0);
   add_time(times_.metric_slam, m.index, ms_since(t0) - waited_ms_);
 }
@@ -178,7 +172,7 @@ void HmtSystem::on_decision(const DecisionMsg& d) {
 
 void HmtSystem::dispatch_event(const area::AreaDecision& decision) {
   EventMsg e;
-  e.step = filter_.steps_processed() - 1;
+  e.step = current_step();
   e.decision = decision;
   e.inputs = filter_.prepare_event(decision);
   event_in_flight_ = true;
@@ -196,6 +190,16 @@ void HmtSystem::on_event_result(const EventMsg& r) {
     waiting_decisions_.erase(waiting_decisions_.begin());
     dispatch_event(next);
   }
+}
+
+void HmtSystem::accept_if_dominant() {
+  std::optional<hybrid::AlignmentJob> job = filter_.accept_if_dominant();
+  if (!job) return;
+  ++alignments_outstanding_;
+  if (!tlca_.post({std::move(*job), {}}))
+    throw Error(ExitCode::kInternal, "loop-closure acceptance stopped");
+  if (framework_.mode == Mode::kDeterministic)
+    on_alignment_result(wait_reply(alignment_results_, "loop-closure acceptance"));
 }
 
 void HmtSystem::on_alignment_result(const AlignmentMsg& r) {
@@ -219,11 +223,7 @@ void HmtSystem::drain() {
     waiting_decisions_.clear();
   }
   // The results applied here may settle a hypothesis, as after any step.
-  if (std::optional<hybrid::AlignmentJob> job = filter_.accept_if_dominant()) {
-    ++alignments_outstanding_;
-    if (!tlca_.post({std::move(*job), {}}))
-      throw Error(ExitCode::kInternal, "loop-closure acceptance stopped");
-  }
+  accept_if_dominant();
   while (alignments_outstanding_ > 0)
     on_alignment_result(wait_reply(alignment_results_, "loop-closure acceptance"));
   if (!traces_.empty()) {

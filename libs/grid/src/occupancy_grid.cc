@@ -3,16 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#if defined(__SANITIZE_THREAD__)
-#define HMT_TSAN 1
-#elif defined(__has_feature)
-#if __has_feature(thread_sanitizer)
-#define HMT_TSAN 1
-#endif
-#endif
-#ifndef HMT_TSAN
-#define HMT_TSAN 0
-#endif
+#include "hmt/common/sole_owner.h"
 
 namespace hmt::grid {
 
@@ -62,14 +53,7 @@ Tile& OccupancyGrid::mutable_tile(int tx, int ty) {
   } else {
     // Sole owner: another grid that shared this tile released it after
     // copying; pair with that release before writing in place.
-#if HMT_TSAN
-    // ThreadSanitizer ignores fences (and would report that copy racing with
-    // our write): acquire through the count itself instead -- a copy and its
-    // release are acquire-release read-modify-writes of the use count.
-    std::shared_ptr<Tile>(slot).reset();
-#else
-    std::atomic_thread_fence(std::memory_order_acquire);
-#endif
+    acquire_sole_ownership(slot);
   }
   return *slot;
 }

@@ -1,22 +1,11 @@
 #include "hmt/topology/hmt_map.h"
 
-#include <atomic>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#if defined(__SANITIZE_THREAD__)
-#define HMT_TSAN 1
-#elif defined(__has_feature)
-#if __has_feature(thread_sanitizer)
-#define HMT_TSAN 1
-#endif
-#endif
-#ifndef HMT_TSAN
-#define HMT_TSAN 0
-#endif
+#include "hmt/common/sole_owner.h"
 
 namespace hmt::topology {
 namespace {
@@ -77,13 +66,7 @@ Area& HmtMap::writable(AreaId id) {
   } else {
     // Sole owner: a copy on another thread that was just released read this
     // area; pair with that release before writing in place.
-#if HMT_TSAN
-    // ThreadSanitizer ignores fences: acquire through the count itself (a
-    // copy and its release are read-modify-writes of the use count).
-    std::shared_ptr<Area>(it->second).reset();
-#else
-    std::atomic_thread_fence(std::memory_order_acquire);
-#endif
+    acquire_sole_ownership(it->second);
   }
   return *it->second;
 }

@@ -139,6 +139,9 @@ class HmtSystem {
   void on_decision(const DecisionMsg& d);
   void dispatch_event(const area::AreaDecision& decision);
   void on_event_result(const EventMsg& r);
+  // TLCA: settles a dominant hypothesis and sends its closures to align
+  // (waiting for them in deterministic mode).
+  void accept_if_dominant();
   void on_alignment_result(const AlignmentMsg& r);
   void poll_replies();
   void drain();
