@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -39,8 +40,74 @@ uint32_t crc_of(const char* data, size_t size) {
 
 // ---------------------------------------------------------------- writing
 
+// Deflates a payload as it is written, so a large one (a session with many
+// areas) never sits in memory whole, and keeps its inflated size and CRC for
+// the header. Level 1: the tile planes are long runs that the fastest level
+// already compresses well; higher levels cost seconds on a large run's map
+// for a few percent of file size.
+class Deflater {
+ public:
+  explicit Deflater(const char* who) : who_(who) {
+    if (deflateInit(&zs_, Z_BEST_SPEED) != Z_OK)
+      throw std::runtime_error(std::string(who_) + ": zlib initialisation failed");
+  }
+  ~Deflater() { deflateEnd(&zs_); }
+  Deflater(const Deflater&) = delete;
+  Deflater& operator=(const Deflater&) = delete;
+
+  void feed(const char* data, size_t n) {
+    crc_ = static_cast<uint32_t>(crc32_z(crc_, reinterpret_cast<const Bytef*>(data), n));
+    size_ += n;
+    run(data, n, Z_NO_FLUSH);
+  }
+  // The whole deflated stream; the Deflater is spent.
+  std::string finish() {
+    run(nullptr, 0, Z_FINISH);
+    out_.resize(used_);
+    return std::move(out_);
+  }
+  uint64_t size() const { return size_; }
+  uint32_t crc() const { return crc_; }
+
+ private:
+  void run(const char* data, size_t n, int flush) {
+    zs_.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data));
+    zs_.avail_in = static_cast<uInt>(n);  // callers feed chunks well under 4 GB
+    for (;;) {
+      if (used_ == out_.size()) out_.resize(std::max<size_t>(2 * out_.size(), 1 << 16));
+      zs_.next_out = reinterpret_cast<Bytef*>(&out_[used_]);
+      zs_.avail_out = static_cast<uInt>(out_.size() - used_);
+      const int rc = deflate(&zs_, flush);
+      used_ = out_.size() - zs_.avail_out;
+      if (rc == Z_STREAM_END) return;
+      if (rc != Z_OK && rc != Z_BUF_ERROR)
+        throw std::runtime_error(std::string(who_) + ": zlib compression failed (" +
+                                 std::to_string(rc) + ")");
+      if (flush == Z_NO_FLUSH && zs_.avail_in == 0 && zs_.avail_out > 0) return;
+    }
+  }
+
+  const char* who_;
+  z_stream zs_{};
+  std::string out_;
+  size_t used_ = 0;
+  uint64_t size_ = 0;
+  uint32_t crc_ = static_cast<uint32_t>(crc32_z(0L, Z_NULL, 0));
+};
+
 class Writer {
  public:
+  // Hands the bytes written so far to `d` whenever they pass kSpillBytes
+  // (spill()) and at flush(); without a Deflater, bytes() keeps everything.
+  explicit Writer(Deflater* d = nullptr) : sink_(d) {}
+  void spill() {
+    if (sink_ && out_.size() >= kSpillBytes) flush();
+  }
+  void flush() {
+    if (!sink_ || out_.empty()) return;
+    sink_->feed(out_.data(), out_.size());
+    out_.clear();
+  }
   void u8(uint8_t v) { out_.push_back(static_cast<char>(v)); }
   void u32(uint32_t v) {
     for (int i = 0; i < 4; ++i)
@@ -75,6 +142,8 @@ class Writer {
   std::string& bytes() { return out_; }
 
  private:
+  static constexpr size_t kSpillBytes = size_t{1} << 20;
+  Deflater* sink_;
   std::string out_;
 };
 
@@ -112,6 +181,7 @@ void write_grid(Writer& w, const grid::OccupancyGrid& g) {
       }
       w.bytes() += plane;
     }
+    w.spill();
   }
 }
 
@@ -126,9 +196,17 @@ void write_scan(Writer& w, const LaserScan& s) {
   for (uint8_t v : s.valid) w.u8(v);
 }
 
-std::string encode_payload(
-    const HmtMap& map, const std::vector<TopologicalHypothesis>& hypotheses) {
-  Writer w;
+// Grids written once in a table (a session's hypotheses share most area
+// maps): the index of each, in the order written.
+using GridTable = std::map<const grid::OccupancyGrid*, uint32_t>;
+constexpr uint32_t kNoGrid = 0xffffffffu;
+
+// The topology payload of the layout in topology_file.h. With `grids`, each
+// area's map is written as its u32 index in the table (kNoGrid: none)
+// instead of the has_map byte and the grid.
+void encode_payload(Writer& w, const HmtMap& map,
+                    const std::vector<TopologicalHypothesis>& hypotheses,
+                    const GridTable* grids = nullptr) {
   const std::vector<AreaId> ids = map.area_ids();
   w.count(ids.size(), "areas");
   for (AreaId id : ids) {
@@ -147,8 +225,12 @@ std::string encode_payload(
       w.pose(k.pose);
       write_scan(w, k.scan);
     }
-    w.u8(a.map ? 1 : 0);
-    if (a.map) write_grid(w, *a.map);
+    if (grids) {
+      w.u32(a.map ? grids->at(a.map.get()) : kNoGrid);
+    } else {
+      w.u8(a.map ? 1 : 0);
+      if (a.map) write_grid(w, *a.map);
+    }
   }
   w.count(map.arcs().size(), "arcs");
   for (const auto& kv : map.arcs()) {
@@ -170,7 +252,6 @@ std::string encode_payload(
       w.u64(e.step);
     }
   }
-  return std::move(w.bytes());
 }
 
 // ---------------------------------------------------------------- reading
@@ -258,8 +339,7 @@ bool finite(const Pose2D& p) {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
 }
 
-std::shared_ptr<const grid::OccupancyGrid> read_grid(Reader& r, AreaId id) {
-  const std::string where = "map of area " + std::to_string(id);
+std::shared_ptr<const grid::OccupancyGrid> read_grid(Reader& r, const std::string& where) {
   const double resolution = r.f64("map resolution");
   if (!(resolution > 0.0) || !std::isfinite(resolution))
     r.fail(where + ": resolution must be positive");
@@ -317,9 +397,11 @@ LaserScan read_scan(Reader& r) {
   return s;
 }
 
-TopologySnapshot decode_payload(const std::string& payload,
-                                const std::string& origin) {
-  Reader r(payload, origin);
+// Reads a payload written by encode_payload (with the same grid table, if
+// any) from r's position; the caller checks what follows.
+TopologySnapshot decode_payload(
+    Reader& r,
+    const std::vector<std::shared_ptr<const grid::OccupancyGrid>>* grids = nullptr) {
   TopologySnapshot snap;
   HmtMap& map = snap.map;
 
@@ -357,9 +439,17 @@ TopologySnapshot decode_payload(const std::string& payload,
       kf.scan = read_scan(r);
       p.keyframes.push_back(std::move(kf));
     }
-    const uint8_t has_map = r.u8("map flag");
-    if (has_map > 1) r.fail("area " + std::to_string(id) + ": bad map flag");
-    if (has_map) p.map = read_grid(r, id);
+    if (grids) {
+      const uint32_t g = r.u32("map index");
+      if (g != kNoGrid && g >= grids->size())
+        r.fail("area " + std::to_string(id) + ": map index " + std::to_string(g) +
+               " beyond the " + std::to_string(grids->size()) + " maps stored");
+      if (g != kNoGrid) p.map = (*grids)[g];
+    } else {
+      const uint8_t has_map = r.u8("map flag");
+      if (has_map > 1) r.fail("area " + std::to_string(id) + ": bad map flag");
+      if (has_map) p.map = read_grid(r, "map of area " + std::to_string(id));
+    }
     contents.push_back(std::move(p));
   }
   std::set<AreaId> ids;
@@ -439,7 +529,6 @@ TopologySnapshot decode_payload(const std::string& payload,
     }
     snap.hypotheses.push_back(std::move(h));
   }
-  if (!r.at_end()) r.fail("unexpected data after the hypotheses");
   return snap;
 }
 
@@ -458,29 +547,19 @@ uint64_t get_u64(const std::string& b, size_t at) {
 
 // The file around a payload: header (magic, version, sizes, checksums) and
 // the deflated payload. Shared by topology and session files.
-std::string wrap(const char (&magic)[8], uint32_t version, const std::string& payload,
-                 const char* who) {
-  uLongf stored = compressBound(payload.size());
-  std::string file(kTopologyHeaderSize + stored, '\0');
-  const int rc =
-      compress2(reinterpret_cast<Bytef*>(&file[kTopologyHeaderSize]), &stored,
-                reinterpret_cast<const Bytef*>(payload.data()), payload.size(),
-                Z_DEFAULT_COMPRESSION);
-  if (rc != Z_OK)
-    throw std::runtime_error(std::string(who) + ": zlib compression failed (" +
-                             std::to_string(rc) + ")");
-  file.resize(kTopologyHeaderSize + stored);
-
+std::string wrap(const char (&magic)[8], uint32_t version, Deflater& payload) {
+  const uint64_t size = payload.size();
+  const uint32_t crc = payload.crc();
+  std::string stream = payload.finish();
   Writer h;
   h.bytes().assign(magic, sizeof magic);
   h.u32(version);
   h.u32(0);
-  h.u64(payload.size());
-  h.u64(stored);
-  h.u32(crc_of(payload.data(), payload.size()));
+  h.u64(size);
+  h.u64(stream.size());
+  h.u32(crc);
   h.u32(crc_of(h.bytes().data(), h.bytes().size()));
-  file.replace(0, kTopologyHeaderSize, h.bytes());
-  return file;
+  return h.bytes() + stream;
 }
 
 // The payload of a file written by wrap(), after every check; `name` and
@@ -552,15 +631,21 @@ void write_whole_file(const std::string& path, const std::string& bytes) {
 
 std::string encode_topology(
     const HmtMap& map, const std::vector<TopologicalHypothesis>& hypotheses) {
-  return wrap(kTopologyMagic, kTopologyFormatVersion, encode_payload(map, hypotheses),
-              "encode_topology");
+  Deflater d("encode_topology");
+  Writer w(&d);
+  encode_payload(w, map, hypotheses);
+  w.flush();
+  return wrap(kTopologyMagic, kTopologyFormatVersion, d);
 }
 
 TopologySnapshot decode_topology(const std::string& bytes,
                                  const std::string& origin) {
-  return decode_payload(unwrap(bytes, kTopologyMagic, kTopologyFormatVersion,
-                               "topology file '" + origin + "'", "an HMT topology file"),
-                        origin);
+  const std::string payload = unwrap(bytes, kTopologyMagic, kTopologyFormatVersion,
+                                     "topology file '" + origin + "'", "an HMT topology file");
+  Reader r(payload, origin);
+  TopologySnapshot snap = decode_payload(r);
+  if (!r.at_end()) r.fail("unexpected data after the hypotheses");
+  return snap;
 }
 
 void save_topology(const std::string& path, const HmtMap& map,
@@ -575,19 +660,31 @@ TopologySnapshot load_topology(const std::string& path) {
 // ------------------------------------------------------------------ session
 
 std::string encode_session(const Session& session) {
-  Writer w;
+  // Every distinct area map once (hypotheses share the maps of the areas
+  // they left before branching), in first-use order.
+  GridTable table;
+  std::vector<const grid::OccupancyGrid*> grids;
+  for (const SessionHypothesis& h : session.hypotheses)
+    for (AreaId id : h.map.area_ids())
+      if (const auto& g = h.map.area(id).map)
+        if (table.emplace(g.get(), static_cast<uint32_t>(grids.size())).second)
+          grids.push_back(g.get());
+  Deflater d("encode_session");
+  Writer w(&d);
   w.u64(session.steps);
   w.f64(session.time);
+  w.count(grids.size(), "maps");
+  for (const grid::OccupancyGrid* g : grids) write_grid(w, *g);
   w.count(session.hypotheses.size(), "hypotheses");
   for (const SessionHypothesis& h : session.hypotheses) {
     w.u32(h.id);
     w.pose(h.robot);
     w.pose(h.aam_from_area);
-    const std::string p = encode_payload(h.map, {h.topo});
-    w.u64(p.size());
-    w.bytes() += p;
+    encode_payload(w, h.map, {h.topo}, &table);
+    w.spill();
   }
-  return wrap(kSessionMagic, kSessionFormatVersion, w.bytes(), "encode_session");
+  w.flush();
+  return wrap(kSessionMagic, kSessionFormatVersion, d);
 }
 
 Session decode_session(const std::string& bytes, const std::string& origin) {
@@ -598,7 +695,9 @@ Session decode_session(const std::string& bytes, const std::string& origin) {
   s.steps = r.u64("steps");
   s.time = r.f64("time");
   if (s.steps == 0) r.fail("no steps processed");
-  const size_t n = r.count(4 + 48 + 8, "hypotheses");
+  std::vector<std::shared_ptr<const grid::OccupancyGrid>> grids(r.count(8 + 4, "maps"));
+  for (size_t g = 0; g < grids.size(); ++g) grids[g] = read_grid(r, "map " + std::to_string(g));
+  const size_t n = r.count(4 + 48 + 4, "hypotheses");
   if (n == 0) r.fail("no hypotheses");
   for (size_t i = 0; i < n; ++i) {
     SessionHypothesis h;
@@ -607,10 +706,7 @@ Session decode_session(const std::string& bytes, const std::string& origin) {
     h.robot = r.pose("robot pose");
     h.aam_from_area = r.pose("area abstraction frame");
     if (!finite(h.robot) || !finite(h.aam_from_area)) r.fail("a pose is not finite");
-    const uint64_t size = r.u64("hypothesis size");
-    if (size > payload.size()) r.fail("hypothesis size exceeds the remaining data");
-    TopologySnapshot t =
-        decode_payload(std::string(r.take(size, "hypothesis"), size), origin);
+    TopologySnapshot t = decode_payload(r, &grids);
     if (t.hypotheses.size() != 1) r.fail("a hypothesis without exactly one path");
     h.map = std::move(t.map);
     h.topo = std::move(t.hypotheses[0]);

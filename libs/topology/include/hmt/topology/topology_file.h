@@ -82,17 +82,24 @@ TopologySnapshot load_topology(const std::string& path);
 // The HMT map file of a run (hmt_map.bin): every live hypothesis with its
 // own map and path, and what is needed to continue the run from where it
 // stopped (hmt-slam resume). Same header layout as above, with magic
-// "HMTSESS\x1a" and its own version; payload:
+// "HMTSESS\x1a" and its own version; payload (version 2):
 //   u64 steps processed; f64 timestamp of the last one;
+//   u32 map count, then each distinct area map once, as a map is stored
+//     above (f64 resolution; u32 tile count; tiles): hypotheses share the
+//     maps of the areas they left before they branched, so a run with
+//     several hypotheses does not store (or hold while writing) each
+//     shared map once per hypothesis;
 //   u32 hypothesis count, then per hypothesis (ascending id):
 //     u32 id; f64 x, y, theta of the robot in its current area (the best
 //     particle); f64 x, y, theta of that area's frame in the area
-//     abstraction's frame; u64 n; n bytes: a topology payload as above with
-//     this hypothesis's map and its one path (log_weight = its log
-//     probability).
+//     abstraction's frame; a topology payload as above with this
+//     hypothesis's map and its one path (log_weight = its log
+//     probability), except that each area's has_map byte and map are
+//     replaced by a u32 index into the map table (0xffffffff: no map).
 // Every part is checked as a topology file is, and each hypothesis's
-// current area must have a map.
-constexpr uint32_t kSessionFormatVersion = 1;
+// current area must have a map. Files are deflated as they are encoded, so
+// writing one holds the compressed file, not the whole payload.
+constexpr uint32_t kSessionFormatVersion = 2;
 inline constexpr char kSessionMagic[8] = {'H', 'M', 'T', 'S', 'E', 'S', 'S', '\x1a'};
 
 struct SessionHypothesis {
