@@ -134,6 +134,10 @@ Pose2D ScanMatcher::hill_climb(const grid::OccupancyGrid& map, const Pose2D& sta
   // Each move strictly raises the score; the cap guards against long walks
   // along a plateau.
   int moves = 0;
+  // The candidate opposite the last move (k ^ 1) is the pose just left,
+  // whose score is below the current best: it cannot win, so it is not
+  // scored again.
+  int came_from = -1;
   while (refinement < opt_.refinements && moves < 100) {
     const Pose2D cand[6] = {
         {best.x + ls, best.y, best.theta}, {best.x - ls, best.y, best.theta},
@@ -143,6 +147,7 @@ Pose2D ScanMatcher::hill_climb(const grid::OccupancyGrid& map, const Pose2D& sta
     int arg = -1;
     double arg_ll = best_ll;
     for (int k = 0; k < 6; ++k) {
+      if (k == came_from) continue;
       const double ll = score(map, cand[k], scan, window).log_likelihood;
       if (ll > arg_ll) {
         arg = k;
@@ -153,9 +158,11 @@ Pose2D ScanMatcher::hill_climb(const grid::OccupancyGrid& map, const Pose2D& sta
       ls *= 0.5;
       as *= 0.5;
       ++refinement;
+      came_from = -1;
     } else {
       best = cand[arg];
       best_ll = arg_ll;
+      came_from = arg ^ 1;
       ++moves;
     }
   }
