@@ -51,7 +51,9 @@ TEST(HybridFilter, HypothesesShareTheParticleBudgetWhenAsked) {
       ASSERT_LE(n, 10u);
       ASSERT_GE(static_cast<double>(n) + 0.5, 10.0 * p[k]);  // at least its share
     }
-    if (p.size() == 1) ASSERT_EQ(f.hypotheses()[0].filter.particles().size(), 10u);
+    if (p.size() == 1) {
+      ASSERT_EQ(f.hypotheses()[0].filter.particles().size(), 10u);
+    }
   }
   // Without the option every hypothesis keeps the full set.
   HybridFilter g(ring_options());
