@@ -3,14 +3,11 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
-#include <vector>
 
-#include "hmt/common/error.h"
-#include "hmt/common/files.h"
+#include "hmt/grid/png.h"
 
 namespace hmt::global_map {
 namespace {
@@ -128,20 +125,7 @@ cv::Mat draw_topology_overlay(const grid::MapImage& base,
 }
 
 void write_color_png(const cv::Mat& image, const std::string& path) {
-  if (image.empty())
-    throw OutputError("cannot write an empty image to '" + path + "'");
-  std::vector<uchar> buf;
-  bool encoded = false;
-  try {
-    encoded = cv::imencode(".png", image, buf);
-  } catch (const cv::Exception& e) {
-    throw OutputError("cannot encode PNG for '" + path + "': " + e.what());
-  }
-  if (!encoded) throw OutputError("cannot encode PNG for '" + path + "'");
-  write_file_atomically(path, [&](std::ostream& os) {
-    os.write(reinterpret_cast<const char*>(buf.data()),
-             static_cast<std::streamsize>(buf.size()));
-  });
+  grid::write_png_file(image, path);
 }
 
 }  // namespace hmt::global_map

@@ -2,10 +2,9 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 
-#include "hmt/common/error.h"
 #include "hmt/common/files.h"
+#include "hmt/grid/png.h"
 
 namespace hmt::grid {
 
@@ -41,13 +40,7 @@ MapImage render(const OccupancyGrid& grid, int margin) {
 }
 
 void write_png(const MapImage& m, const std::string& path) {
-  std::vector<uchar> buf;
-  if (!cv::imencode(".png", m.image, buf))
-    throw OutputError("cannot encode PNG for '" + path + "'");
-  write_file_atomically(path, [&](std::ostream& os) {
-    os.write(reinterpret_cast<const char*>(buf.data()),
-             static_cast<std::streamsize>(buf.size()));
-  });
+  write_png_file(m.image, path);
 }
 
 void write_pgm_yaml(const MapImage& m, const std::string& base) {

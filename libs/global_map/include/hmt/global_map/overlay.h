@@ -49,9 +49,9 @@ cv::Mat draw_topology_overlay(const grid::MapImage& base,
                               const GlobalPoses& poses,
                               const OverlayOptions& options = {});
 
-// Writes any image cv::imencode accepts as PNG, atomically (complete or
-// absent, see hmt/common/files.h). Throws hmt::OutputError on failure,
-// including an empty image.
+// Writes an 8-bit grey, BGR or BGRA image as PNG, atomically (complete or
+// absent, see hmt/common/files.h; grid::write_png_file). Throws
+// hmt::OutputError on failure, including an empty image.
 void write_color_png(const cv::Mat& image, const std::string& path);
 
 }  // namespace hmt::global_map

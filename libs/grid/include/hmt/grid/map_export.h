@@ -20,7 +20,8 @@ struct MapImage {
 // Renders the allocated part of the grid (plus a margin in cells).
 MapImage render(const OccupancyGrid& grid, int margin_cells = 10);
 
-// Atomic writes; throw OutputError.
+// Atomic writes; throw OutputError. write_png takes any image write_png_file
+// (hmt/grid/png.h) does: the grey maps, and the colour pictures drawn on them.
 void write_png(const MapImage& m, const std::string& path);
 // Writes `<base>.pgm` and `<base>.yaml` (image: referenced by file name).
 void write_pgm_yaml(const MapImage& m, const std::string& base_path);

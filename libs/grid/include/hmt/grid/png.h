@@ -1,0 +1,28 @@
+// PNG files of the images the project draws (grey maps, colour overlays),
+// encoded with libpng rather than OpenCV's imgcodecs: imgcodecs loads some
+// hundred shared libraries (GDAL, poppler, HDF5, ...) into every process
+// that links it, which dominated the resident memory of the tools. The
+// encoder uses cv::imencode's settings (SUB filter, deflate level 1,
+// run-length strategy), so with the same libpng and zlib the files are
+// byte for byte those imencode wrote.
+#pragma once
+
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+namespace hmt::grid {
+
+// The PNG bytes of an 8-bit image with 1 (grey), 3 (BGR, OpenCV's order) or
+// 4 (BGRA) channels; colour is stored as RGB(A), as cv::imencode does, so
+// that any reader gets the same pixels back. Throws hmt::OutputError, naming
+// `path` (the file the bytes are for), for an empty image, another depth or
+// channel count, or an encoder failure.
+std::vector<uint8_t> encode_png(const cv::Mat& image, const std::string& path);
+
+// encode_png() written atomically to `path` (complete or absent, see
+// hmt/common/files.h). Throws hmt::OutputError on failure.
+void write_png_file(const cv::Mat& image, const std::string& path);
+
+}  // namespace hmt::grid
