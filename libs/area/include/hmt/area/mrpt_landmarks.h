@@ -1,6 +1,7 @@
 // Adapter from MRPT's range-bearing landmark observation to the plain
-// LandmarkObservation of landmark_sso.h. MRPT stays a private dependency of
-// hmt_area: this header only forward-declares the MRPT class.
+// LandmarkObservation of landmark_sso.h. In its own library, hmt_area_mrpt,
+// so that hmt_area does not load MRPT; MRPT stays private to it: this header
+// only forward-declares the MRPT class.
 #pragma once
 
 #include "hmt/area/landmark_sso.h"

@@ -29,7 +29,7 @@
 //
 // Why not hmt::area::PoseGaussian (libs/area): that type is a plain struct
 // with one operation (relative pose) for the SSO, and it lives in the area
-// abstraction library, which links Spectra and MRPT; the topological layer
+// abstraction library, which links Spectra; the topological layer
 // needs composition, inversion, fusion and sampling, and must not pull the
 // area abstraction into everything that reads an HMT map. The two agree on
 // the parameterisation (mean + covariance of (x, y, theta)), so converting
