@@ -1,10 +1,5 @@
 #include "hmt/alignment/grid_alignment.h"
 
-#include <mrpt/maps/CSimplePointsMap.h>
-#include <mrpt/poses/CPose2D.h>
-#include <mrpt/poses/CPosePDF.h>
-#include <mrpt/slam/CICP.h>
-
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -12,6 +7,8 @@
 #include <cstdint>
 #include <sstream>
 #include <unordered_map>
+
+#include "hmt/alignment/icp.h"
 
 namespace hmt::alignment {
 namespace {
@@ -222,41 +219,6 @@ double translation_information_ratio(const Eigen::Matrix3d& H) {
   return lmax > 0 ? std::max(0.0, lmin / lmax) : 0.0;
 }
 
-// MRPT's classic ICP from `start`; returns the pose of moving in fixed.
-Pose2D icp_register(const std::vector<Point2D>& moving,
-                    const std::vector<Point2D>& fixed, const Pose2D& start,
-                    const AlignmentOptions& opt, int* iterations) {
-  mrpt::maps::CSimplePointsMap fixed_map, moving_map;
-  fixed_map.reserve(fixed.size());
-  for (const Point2D& p : fixed)
-    fixed_map.insertPoint(static_cast<float>(p.x), static_cast<float>(p.y), 0.0f);
-  moving_map.reserve(moving.size());
-  for (const Point2D& p : moving)
-    moving_map.insertPoint(static_cast<float>(p.x), static_cast<float>(p.y), 0.0f);
-
-  mrpt::slam::CICP icp;
-  auto& o = icp.options;
-  o.ICP_algorithm = mrpt::slam::icpClassic;
-  o.maxIterations = static_cast<unsigned>(opt.icp_max_iterations);
-  o.thresholdDist = opt.icp_threshold_start;
-  o.thresholdAng = opt.icp_threshold_angular;
-  o.ALFA = opt.icp_threshold_decay;
-  o.smallestThresholdDist = opt.icp_threshold_end;
-  o.onlyUniqueRobust = false;
-  o.corresponding_points_decimation = 1;  // pair every moving point
-  o.doRANSAC = false;
-  o.skip_cov_calculation = true;  // ours comes from the refinement
-  o.skip_quality_calculation = true;
-
-  mrpt::slam::CICP::TReturnInfo info;
-  const mrpt::poses::CPosePDF::Ptr pdf = icp.Align(
-      &fixed_map, &moving_map, mrpt::poses::CPose2D(start.x, start.y, start.theta),
-      info);
-  *iterations = static_cast<int>(info.nIterations);
-  const mrpt::poses::CPose2D m = pdf->getMeanVal();
-  return {m.x(), m.y(), wrap_angle(m.phi())};
-}
-
 }  // namespace
 
 std::vector<Point2D> occupied_points(const grid::OccupancyGrid& grid,
@@ -302,10 +264,10 @@ AlignmentResult align_grids(const grid::OccupancyGrid& moving,
     return res;
   }
 
-  // Coarse to fine: MRPT's ICP.
-  int icp_iterations = 0;
-  Pose2D pose = icp_register(mpts, fpts, initial.mean, opt, &icp_iterations);
-  res.iterations = icp_iterations;
+  // Coarse to fine: classic ICP.
+  const IcpResult icp = icp_register(mpts, fpts, initial.mean, opt);
+  Pose2D pose = icp.pose;
+  res.iterations = icp.iterations;
   res.pose.mean = pose;
 
   // Fine: robust Gauss-Newton, point-to-line on walls.

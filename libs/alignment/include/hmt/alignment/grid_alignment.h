@@ -11,14 +11,16 @@
 //     at least min_hits laser hits), at its mean hit position (sub-cell
 //     precision). Cells are visited in a fixed order, so the point lists and
 //     everything after them are deterministic.
-//  2. Registration: MRPT's classic ICP (mrpt::slam::CICP, icpClassic), fixed
-//     points as the reference map, started at the initial mean, with a
-//     coarse-to-fine pairing threshold: it starts at icp_threshold_start
-//     (+ icp_threshold_angular per metre from moving's origin, for the
-//     rotational error of the guess) and is multiplied by icp_threshold_decay
-//     each time the pose stops changing, until it falls below
-//     icp_threshold_end. Every moving point is paired (no decimation).
-//  3. Refinement and covariance (our code): Gauss-Newton on the pairs
+//  2. Registration: classic point-to-point ICP (icp.h; the schedule of MRPT's
+//     CICP, icpClassic), started at the initial mean: every moving point
+//     paired with its nearest fixed point within a coarse-to-fine pairing
+//     threshold, rigid fit in closed form. The threshold starts at
+//     icp_threshold_start (+ icp_threshold_angular per metre from moving's
+//     origin, for the rotational error of the guess) and is multiplied by
+//     icp_threshold_decay each time the pose stops changing, until it falls
+//     below icp_threshold_end (or icp_max_iterations). Every moving point
+//     is paired (no decimation).
+//  3. Refinement and covariance: Gauss-Newton on the pairs
 //     (each moving point with its nearest fixed point within match_distance,
 //     searched in the fixed grid's cells around it), with Cauchy weights
 //     w = 1 / (1 + (r / robust_scale)^2). The residual depends on the fixed
@@ -31,10 +33,10 @@
 //       whose hits are metres apart): no residual, since which stray hit
 //       pairs with which is arbitrary and would fake a constraint. The pair
 //       still counts as an inlier.
-//     Why not MRPT's covariance, and why not point-to-point everywhere: with
-//     point-to-point residuals every pair constrains both translations
+//     Why not ICP's own covariance, and why not point-to-point everywhere:
+//     with point-to-point residuals every pair constrains both translations
 //     (J = [I, dR/dtheta p]), so the Hessian of a long featureless corridor
-//     still looks well conditioned along the corridor; ICP's own covariance
+//     still looks well conditioned along the corridor; MRPT's ICP covariance
 //     (icpCovLinealMSE / finite differences) is point-to-point too and uses
 //     a fixed point variance instead of one measured from the residuals.
 //     Point-to-line residuals carry no information along a wall, so the
@@ -96,7 +98,7 @@ struct AlignmentOptions {
   int min_hits = 1;                    // ... and has at least this many hits
   int min_points = 50;                 // fewer points (or pairs): not ok
 
-  // --- registration (MRPT classic ICP, coarse to fine)
+  // --- registration (classic ICP, coarse to fine: icp.h)
   double icp_threshold_start = 1.0;     // initial pairing distance [m]
   double icp_threshold_angular = 0.05;  // + this [rad] x distance from
                                         //   moving's origin [m]
