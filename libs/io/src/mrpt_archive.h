@@ -11,6 +11,7 @@
 // class it meets (rawlog_objects.h knows the rawlog's laser/odometry ones).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <stdexcept>
 #include <string>

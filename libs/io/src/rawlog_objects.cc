@@ -113,8 +113,9 @@ class Decoder {
   explicit Decoder(ArchiveReader& ar) : ar_(ar) {}
 
   RawObject any() {
-    // Each level costs a stack frame; real rawlogs nest four deep
-    // (CRawlog > CSensoryFrame > scan > CPose3D > matrix).
+    // Each level costs stack; real rawlogs nest five deep at most
+    // (CRawlog > CSensoryFrame > scan > CPose3D > matrix), damaged ones
+    // could nest until the stack overflows.
     if (++depth_ > kMaxDepth) throw ArchiveError("objects nested too deeply");
     const ObjectHeader h = ar_.header();
     RawObject o;
@@ -147,22 +148,20 @@ class Decoder {
   }
 
   void body(ClassId id, const ObjectHeader& h, RawObject& o) {
+    Pose3DRecord unused;
     switch (id) {
-      case ClassId::kSensoryFrame: return sensory_frame(h, o);
-      case ClassId::kActionCollection: return action_collection(h, o);
-      case ClassId::kRawlog: return rawlog(h, o);
-      case ClassId::kScan: return scan(h, o.scan);
-      case ClassId::kOdometry: return odometry(h, o.pose);
-      case ClassId::kComment: return comment(h);
-      case ClassId::kMove2D: return move2d(h, o.move);
-      case ClassId::kPosePdfGaussian: return pose_pdf_gaussian(h, o.pose);
-      case ClassId::kPose2D: return pose2d(h, o.pose);
-      case ClassId::kPose3D: {
-        Pose3DRecord unused;
-        return pose3d(h, unused);
-      }
-      case ClassId::kMatrixD: matrix(h, false, nullptr); return;
-      case ClassId::kMatrixF: matrix(h, true, nullptr); return;
+      case ClassId::kSensoryFrame: sensory_frame(h, o); break;
+      case ClassId::kActionCollection: action_collection(h, o); break;
+      case ClassId::kRawlog: rawlog(h, o); break;
+      case ClassId::kScan: scan(h, o.scan); break;
+      case ClassId::kOdometry: odometry(h, o.pose); break;
+      case ClassId::kComment: comment(h); break;
+      case ClassId::kMove2D: move2d(h, o.move); break;
+      case ClassId::kPosePdfGaussian: pose_pdf_gaussian(h, o.pose); break;
+      case ClassId::kPose2D: pose2d(h, o.pose); break;
+      case ClassId::kPose3D: pose3d(h, unused); break;
+      case ClassId::kMatrixD: matrix(h, false, nullptr); break;
+      case ClassId::kMatrixF: matrix(h, true, nullptr); break;
     }
   }
 
