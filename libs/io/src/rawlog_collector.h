@@ -1,6 +1,8 @@
 // Turns the rawlog's scans, odometry readings and robot movements, in file
-// order, into the internal stream. Shared by the native reader and the MRPT
-// plugin, so that both give the same log for the same file.
+// order, into the internal stream. Both odometry sources are kept until the
+// end, since which one a file uses is only known then. Shared by the native
+// reader and the MRPT plugin, so that both give the same log for the same
+// file.
 #pragma once
 
 #include <optional>
