@@ -1,5 +1,6 @@
 #include "gz_stream.h"
 
+#include <algorithm>
 #include <climits>
 #include <stdexcept>
 
@@ -17,7 +18,7 @@ GzInputStream::~GzInputStream() {
   if (file_) gzclose(file_);
 }
 
-size_t GzInputStream::Read(void* buffer, size_t count) {
+size_t GzInputStream::read(void* buffer, size_t count) {
   auto* out = static_cast<char*>(buffer);
   size_t done = 0;
   while (done < count) {
@@ -27,23 +28,7 @@ size_t GzInputStream::Read(void* buffer, size_t count) {
     done += static_cast<size_t>(got);
   }
   position_ += done;
-  return done == count ? count : 0;
-}
-
-size_t GzInputStream::Write(const void*, size_t) {
-  throw std::logic_error("GzInputStream is read-only");
-}
-
-uint64_t GzInputStream::Seek(int64_t, TSeekOrigin) {
-  throw std::logic_error("GzInputStream cannot seek");
-}
-
-// Unknown before the whole file is decompressed; MRPT only uses it for
-// progress reports.
-uint64_t GzInputStream::getTotalBytesCount() const { return 0; }
-
-std::string GzInputStream::getStreamDescription() const {
-  return "input log '" + path_ + "'";
+  return done;
 }
 
 bool GzInputStream::at_end() {
@@ -67,7 +52,7 @@ std::string GzInputStream::compression_error() const {
   return text;
 }
 
-OstreamOutputStream::OstreamOutputStream(std::ostream& out, bool gzip)
+GzOutputStream::GzOutputStream(std::ostream& out, bool gzip)
     : out_(out), gzip_(gzip) {
   if (gzip_) {
     // windowBits 15 + 16: a gzip header and trailer instead of raw zlib, so
@@ -78,20 +63,12 @@ OstreamOutputStream::OstreamOutputStream(std::ostream& out, bool gzip)
   }
 }
 
-OstreamOutputStream::~OstreamOutputStream() {
+GzOutputStream::~GzOutputStream() {
   if (gzip_) deflateEnd(&zs_);
 }
 
-size_t OstreamOutputStream::Read(void*, size_t) {
-  throw std::logic_error("OstreamOutputStream is write-only");
-}
-
-uint64_t OstreamOutputStream::Seek(int64_t, TSeekOrigin) {
-  throw std::logic_error("OstreamOutputStream cannot seek");
-}
-
-size_t OstreamOutputStream::Write(const void* buffer, size_t count) {
-  if (!ok_ || finished_) return 0;
+bool GzOutputStream::write(const void* buffer, size_t count) {
+  if (!ok_ || finished_) return false;
   if (!gzip_) {
     out_.write(static_cast<const char*>(buffer),
                static_cast<std::streamsize>(count));
@@ -107,12 +84,11 @@ size_t OstreamOutputStream::Write(const void* buffer, size_t count) {
       done += chunk;
     }
   }
-  if (!ok_) return 0;
-  position_ += count;
-  return count;
+  if (ok_) position_ += count;
+  return ok_;
 }
 
-bool OstreamOutputStream::deflate_chunk(int flush) {
+bool GzOutputStream::deflate_chunk(int flush) {
   unsigned char buf[1 << 15];
   int ret;
   do {
@@ -128,7 +104,7 @@ bool OstreamOutputStream::deflate_chunk(int flush) {
   return true;
 }
 
-bool OstreamOutputStream::finish() {
+bool GzOutputStream::finish() {
   if (!finished_ && ok_ && gzip_) {
     zs_.next_in = nullptr;
     zs_.avail_in = 0;

@@ -1,10 +1,10 @@
-// MRPT streams over zlib, for the rawlog reader and writer.
+// zlib streams for the rawlog reader and writer.
 //
 // Reading goes through gzopen()/gzread(), which reads gzip and plain files
 // alike, so one code path serves ".rawlog" and ".rawlog.gz". The stream
-// counts the bytes it has handed out, which is what lets the reader tell a
-// clean end of file (nothing read for the next object) from a file cut in the
-// middle of an object (MRPT reports both as "EOF"), and it keeps zlib's own
+// counts the bytes it has handed out and says whether any are left, which is
+// what lets the reader tell a clean end of file (nothing read for the next
+// object) from a file cut in the middle of an object, and it keeps zlib's own
 // diagnosis ("unexpected end of file", "incorrect data check") for messages.
 #pragma once
 
@@ -14,26 +14,21 @@
 #include <ostream>
 #include <string>
 
-#include <mrpt/io/CStream.h>
-
 namespace hmt::io::detail {
 
-class GzInputStream : public mrpt::io::CStream {
+class GzInputStream {
  public:
   // Throws hmt::InputError naming `path` if it cannot be opened.
   explicit GzInputStream(const std::string& path);
-  ~GzInputStream() override;
+  ~GzInputStream();
   GzInputStream(const GzInputStream&) = delete;
   GzInputStream& operator=(const GzInputStream&) = delete;
 
-  // All `count` bytes, or 0: MRPT's readers of plain values ignore short
-  // reads, so a partial read must look like a failure to them.
-  size_t Read(void* buffer, size_t count) override;
-  size_t Write(const void* buffer, size_t count) override;
-  uint64_t Seek(int64_t offset, TSeekOrigin origin) override;
-  uint64_t getTotalBytesCount() const override;
-  uint64_t getPosition() const override { return position_; }
-  std::string getStreamDescription() const override;
+  // Reads up to `count` bytes; returns how many were read (fewer only at the
+  // end of the data or at damaged compressed data).
+  size_t read(void* buffer, size_t count);
+  uint64_t position() const { return position_; }
+  const std::string& path() const { return path_; }
 
   // True when no byte is left (peeks one byte and pushes it back).
   bool at_end();
@@ -48,18 +43,16 @@ class GzInputStream : public mrpt::io::CStream {
 };
 
 // Writes to a std::ostream, gzip-compressed or as is.
-class OstreamOutputStream : public mrpt::io::CStream {
+class GzOutputStream {
  public:
-  OstreamOutputStream(std::ostream& out, bool gzip);
-  ~OstreamOutputStream() override;
-  OstreamOutputStream(const OstreamOutputStream&) = delete;
-  OstreamOutputStream& operator=(const OstreamOutputStream&) = delete;
+  GzOutputStream(std::ostream& out, bool gzip);
+  ~GzOutputStream();
+  GzOutputStream(const GzOutputStream&) = delete;
+  GzOutputStream& operator=(const GzOutputStream&) = delete;
 
-  size_t Read(void* buffer, size_t count) override;
-  size_t Write(const void* buffer, size_t count) override;
-  uint64_t Seek(int64_t offset, TSeekOrigin origin) override;
-  uint64_t getTotalBytesCount() const override { return position_; }
-  uint64_t getPosition() const override { return position_; }
+  // False once the underlying stream has failed (and from then on).
+  bool write(const void* buffer, size_t count);
+  uint64_t position() const { return position_; }
 
   // Flushes the compressor and writes the gzip trailer. Returns false if the
   // underlying stream failed at any point.

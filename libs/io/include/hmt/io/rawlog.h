@@ -28,18 +28,23 @@ namespace hmt::io {
 //    +inf readings are no-returns (stored as maxRange), NaN is an error;
 //  - sensor_pose is the planar part (x, y, yaw) of the scan's sensorPose.
 //
-// Limitation: the objects are decoded by MRPT's own deserializers, and a few
-// of them do not check what they read. A file damaged *inside* an object
-// (flipped bits, not truncation) can therefore crash MRPT 2.5.8: e.g. a
-// CActionRobotMovement2D whose estimation method is corrupted reads its PDF
-// as whatever object follows and dereferences a null pointer. Truncated
-// files, garbage and wrong object types are caught.
+// The format is read natively for the classes laser/odometry rawlogs hold
+// (see src/rawlog_objects.h), in every version MRPT 2.5.8 reads. A file that
+// also holds other classes (camera images, GPS...) is read by MRPT itself,
+// through a plugin loaded only then (src/mrpt_fallback.h); if the plugin
+// cannot be loaded, the InputError names the class and the file.
+//
+// Limitation: MRPT's own deserializers do not check everything they read,
+// so a file read through the plugin and damaged *inside* an object (flipped
+// bits, not truncation) can crash MRPT 2.5.8. The native reader checks every
+// read.
 hmt::Log read_rawlog(const std::string& path);
 
 enum class RawlogFormat { kActionsSensoryFrames, kObservationsOnly };
 
 // Writes `log` as an MRPT rawlog, gzip-compressed iff `path` ends in ".gz",
-// atomically (temporary file + rename). Scans get sensorLabel "LASER",
+// atomically (temporary file + rename), byte for byte as MRPT 2.5.8 writes
+// the same objects (so its rbpf-slam reads it). Scans get sensorLabel "LASER",
 // odometry "ODOMETRY"; timestamps are kept (to 100 ns, MRPT's resolution).
 //  - kActionsSensoryFrames: per step a CActionCollection holding a
 //    CActionRobotMovement2D made from the increment with MRPT's default

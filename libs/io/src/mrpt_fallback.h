@@ -1,0 +1,29 @@
+// Reading a rawlog with MRPT itself, for files holding objects the native
+// reader does not know (rawlog_objects.h). MRPT lives in a plugin loaded
+// with dlopen() on first need, so that reading laser and odometry logs never
+// maps MRPT's ~170 shared libraries into the process.
+//
+// The plugin is looked for, in order:
+//  - at $HMT_IO_MRPT_PLUGIN when that is set (then nowhere else);
+//  - next to the running executable (libhmt_io_mrpt.so);
+//  - where the build put it (a path compiled in by CMake).
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "hmt/common/sensor_data.h"
+
+namespace hmt::io::detail {
+
+// Reads the whole file with MRPT, as the reader did before it read the
+// format natively (same log, same InputError messages). `needed_for` says
+// what made MRPT necessary ("a CObservationImage (entry 3)"); it names the
+// problem if the plugin cannot be loaded, which is an InputError too.
+hmt::Log read_rawlog_with_mrpt(const std::string& path, bool chosen_by_content,
+                               const std::string& needed_for);
+
+// How many reads have gone through MRPT in this process.
+size_t mrpt_fallback_reads();
+
+}  // namespace hmt::io::detail

@@ -1,0 +1,114 @@
+#include "rawlog_collector.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "hmt/common/error.h"
+#include "rawlog_scan.h"
+
+namespace hmt::io::detail {
+namespace {
+
+Pose2D to_pose(const Pose2DRecord& p) {
+  return Pose2D(p.x, p.y, wrap_angle(p.phi));
+}
+
+bool finite(const Pose2D& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
+}
+
+}  // namespace
+
+void RawlogCollector::not_an_entry(const std::string& class_name) const {
+  throw InputError(prefix() + "entry " + std::to_string(entry_) + " is a " +
+                   class_name +
+                   ", not a rawlog entry (CSensoryFrame, CActionCollection "
+                   "or CObservation)");
+}
+
+void RawlogCollector::empty_entry() const {
+  throw InputError(prefix() + "entry " + std::to_string(entry_) +
+                   " is an empty object");
+}
+
+void RawlogCollector::add_move(const MoveRecord& mv) {
+  // The raw odometry reading is only filled in for odometry-based
+  // estimates; otherwise (scan matching) the PDF's mean is the estimate.
+  Pose2D inc;
+  if (mv.method == MoveRecord::kOdometry) {
+    inc = to_pose(mv.raw_increment);
+  } else {
+    if (!mv.has_pdf)
+      throw InputError(prefix() + "entry " + std::to_string(entry_) +
+                       " holds a robot movement without an estimate");
+    inc = to_pose(mv.pdf_mean);
+  }
+  if (!finite(inc))
+    throw InputError(prefix() + "entry " + std::to_string(entry_) +
+                     " holds a non-finite odometry increment");
+  pending_increment_ = pending_increment_ + inc;
+  any_action_ = true;
+}
+
+void RawlogCollector::add_scan(const ScanRecord& scan) {
+  PendingScan p;
+  try {
+    p.scan = to_laser_scan(scan);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(prefix() + "scan " + std::to_string(scans_.size()) +
+                     " (entry " + std::to_string(entry_) +
+                     ") is unusable: " + e.what());
+  }
+  p.action_increment = pending_increment_;
+  p.odometry = latest_odometry_;
+  pending_increment_ = Pose2D();
+  scans_.push_back(std::move(p));
+}
+
+void RawlogCollector::add_odometry(const Pose2DRecord& odometry) {
+  const Pose2D pose = to_pose(odometry);
+  if (!finite(pose))
+    throw InputError(prefix() + "entry " + std::to_string(entry_) +
+                     " holds a non-finite odometry pose");
+  latest_odometry_ = pose;
+  if (!first_odometry_) first_odometry_ = pose;
+}
+
+hmt::Log RawlogCollector::finish(size_t entries) {
+  if (scans_.empty())
+    throw InputError(prefix() + "holds no 2D laser scans (" +
+                     std::to_string(entries) + " entries read)");
+  const bool use_actions = any_action_;
+  if (!use_actions && !first_odometry_)
+    throw InputError(prefix() + "holds " + std::to_string(scans_.size()) +
+                     " laser scans but no odometry (neither "
+                     "CActionRobotMovement2D nor CObservationOdometry)");
+  hmt::Log log;
+  log.source = path_;
+  log.steps.reserve(scans_.size());
+  // Observations-only files: each scan takes the latest odometry reading
+  // before it in the file (no interpolation). File order rather than
+  // timestamps, because logs converted from other formats can carry
+  // rounded or non-monotonic clocks; MRPT's grabbers write observations in
+  // time order, so for them the two agree. Scans before the first odometry
+  // reading take that first reading (the robot has not been seen moving).
+  Pose2D prev_odo;
+  for (size_t k = 0; k < scans_.size(); ++k) {
+    PendingScan& s = scans_[k];
+    LogStep step;
+    step.timestamp = s.scan.timestamp;
+    step.scan = std::move(s.scan);
+    const Pose2D odo =
+        use_actions ? Pose2D() : s.odometry.value_or(*first_odometry_);
+    if (k > 0) {
+      step.has_odometry = true;
+      step.odometry_increment =
+          use_actions ? s.action_increment : odo - prev_odo;
+    }
+    prev_odo = odo;
+    log.steps.push_back(std::move(step));
+  }
+  return log;
+}
+
+}  // namespace hmt::io::detail
