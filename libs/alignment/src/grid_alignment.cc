@@ -57,9 +57,9 @@ class FixedIndex {
     for (int cy = lo.y; cy <= hi.y; ++cy)
       for (int cx = lo.x; cx <= hi.x; ++cx) {
         const CellIndex c{cx, cy};
-        const Cell* cell = g_.find(c);
-        if (!cell || !is_point_(*cell)) continue;
-        const Point2D m = g_.hit_mean(c, *cell);
+        const Cell cell = g_.cell(c);  // unknown space: all zero, no point
+        if (!is_point_(cell)) continue;
+        const Point2D m = g_.hit_mean(c, cell);
         const double d2 = (m.x - x) * (m.x - x) + (m.y - y) * (m.y - y);
         if (d2 <= best) {
           if (found && d2 == best) continue;
@@ -95,8 +95,7 @@ class FixedIndex {
   };
 
   Local compute_shape(CellIndex c) const {
-    const Cell* self = g_.find(c);
-    const Point2D q = g_.hit_mean(c, *self);
+    const Point2D q = g_.hit_mean(c, g_.cell(c));
     const double r = normal_radius_;
     const CellIndex lo = g_.cell_of(q.x - r, q.y - r);
     const CellIndex hi = g_.cell_of(q.x + r, q.y + r);
@@ -106,9 +105,9 @@ class FixedIndex {
     for (int cy = lo.y; cy <= hi.y; ++cy)
       for (int cx = lo.x; cx <= hi.x; ++cx) {
         const CellIndex k{cx, cy};
-        const Cell* cell = g_.find(k);
-        if (!cell || !is_point_(*cell)) continue;
-        const Point2D m = g_.hit_mean(k, *cell);
+        const Cell cell = g_.cell(k);
+        if (!is_point_(cell)) continue;
+        const Point2D m = g_.hit_mean(k, cell);
         const Eigen::Vector2d d(m.x - q.x, m.y - q.y);  // centred on q: no cancellation
         if (d.squaredNorm() > r * r) continue;
         sum += d;
@@ -238,7 +237,7 @@ std::vector<Point2D> occupied_points(const grid::OccupancyGrid& grid,
           // Tile indices are negative left of and below the origin: multiply
           // (a left shift of a negative int is undefined in C++17).
           const CellIndex c{tx * grid::kTileSize + i, ty * grid::kTileSize + j};
-          const Cell& cell = OccupancyGrid::cell_in(*t, c);
+          const Cell cell = t->cell(OccupancyGrid::index_in_tile(c));
           if (is_point(cell)) out.push_back(grid.hit_mean(c, cell));
         }
     }

@@ -54,15 +54,17 @@ void expect_small_positive_definite(const Eigen::Matrix3d& cov) {
 
 TEST(GridAlignment, PointsAreTheOccupiedCellsAtTheirHitMeans) {
   grid::OccupancyGrid g(0.1);
-  grid::Cell& a = g.mutable_cell({3, -2});
+  grid::Cell a;
   a.logodds = 40;
   a.hits = 2;
   a.hx = 127;  // +0.5 cell
   a.hy = -127;
-  g.mutable_cell({4, 4}).logodds = 40;  // occupied but never hit: no point
-  grid::Cell& free = g.mutable_cell({5, 5});
+  g.set_cell({3, -2}, a);
+  g.mutable_logodds({4, 4}) = 40;  // occupied but never hit: no point
+  grid::Cell free;
   free.logodds = -40;
   free.hits = 3;
+  g.set_cell({5, 5}, free);
   const auto pts = occupied_points(g, AlignmentOptions{});
   ASSERT_EQ(pts.size(), 1u);
   EXPECT_NEAR(pts[0].x, 0.35 + 0.1 * 127 / grid::kHitScale, 1e-12);

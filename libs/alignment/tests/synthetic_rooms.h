@@ -73,10 +73,9 @@ inline grid::OccupancyGrid crop(const grid::OccupancyGrid& g, const Pose2D& fram
   if (!g.bounds(&lo, &hi)) return out;
   for (int y = lo.y; y <= hi.y; ++y)
     for (int x = lo.x; x <= hi.x; ++x) {
-      const grid::Cell* c = g.find({x, y});
-      if (!c || (c->logodds == 0 && c->hits == 0)) continue;
-      if (keep(frame.transform(g.cell_center({x, y}))))
-        out.mutable_cell({x, y}) = *c;
+      const grid::Cell c = g.cell({x, y});  // unknown space: all zero
+      if (c.logodds == 0 && c.hits == 0) continue;
+      if (keep(frame.transform(g.cell_center({x, y})))) out.set_cell({x, y}, c);
     }
   return out;
 }

@@ -36,11 +36,11 @@ CellBox covered_cells(const grid::OccupancyGrid& area, const Pose2D& pose,
   return {target.cell_of(min_x, min_y), target.cell_of(max_x, max_y)};
 }
 
-void add_into(grid::Cell& to, const grid::Cell& from) {
-  const int sum = std::clamp<int>(to.logodds + from.logodds, -kLogOddsLimit,
+void add_into(grid::Tile& to, int i, const grid::Cell& from) {
+  const int sum = std::clamp<int>(to.logodds[i] + from.logodds, -kLogOddsLimit,
                                   kLogOddsLimit);
-  to.logodds = static_cast<grid::LogOdds>(sum);
-  to.hits = std::max(to.hits, from.hits);
+  to.logodds[i] = static_cast<grid::LogOdds>(sum);
+  if (from.hits > to.hit(i).hits) to.mutable_hit(i).hits = from.hits;
 }
 
 void draw_area(const grid::OccupancyGrid& area, const Pose2D& pose,
@@ -52,9 +52,10 @@ void draw_area(const grid::OccupancyGrid& area, const Pose2D& pose,
   for (int y = box.lo.y; y <= box.hi.y; ++y)
     for (int x = box.lo.x; x <= box.hi.x; ++x) {
       const Point2D local = to_area.transform(target.cell_center({x, y}));
-      const grid::Cell* source = area.find(area.cell_of(local.x, local.y));
-      if (!source || (source->logodds == 0 && source->hits == 0)) continue;
-      add_into(target.mutable_cell({x, y}), *source);
+      const grid::Cell source = area.cell(area.cell_of(local.x, local.y));
+      if (source.logodds == 0 && source.hits == 0) continue;  // or unknown
+      add_into(target.mutable_tile(x >> grid::kTileBits, y >> grid::kTileBits),
+               grid::OccupancyGrid::index_in_tile({x, y}), source);
     }
 }
 

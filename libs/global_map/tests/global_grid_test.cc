@@ -22,9 +22,10 @@ std::shared_ptr<grid::OccupancyGrid> wall_map(int row, int logodds = 80,
                                               int hits = 3) {
   auto g = std::make_shared<grid::OccupancyGrid>(kRes);
   for (int x = 0; x < 10; ++x) {
-    grid::Cell& c = g->mutable_cell({x, row});
+    grid::Cell c;
     c.logodds = static_cast<grid::LogOdds>(logodds);
     c.hits = static_cast<uint8_t>(hits);
+    g->set_cell({x, row}, c);
   }
   return g;
 }
@@ -67,12 +68,12 @@ TEST(RenderGlobalGrid, WallsLandWhereThePosesPutThem) {
     expected.insert({27, 10 + i});  // area 1, rotated
   }
   EXPECT_EQ(occupied_cells(g), expected);
-  const grid::Cell* c = g.find({27, 14});
-  ASSERT_NE(c, nullptr);
-  EXPECT_EQ(c->logodds, 80);
-  EXPECT_EQ(c->hits, 3);
-  EXPECT_EQ(c->hx, 0);
-  EXPECT_EQ(c->hy, 0);
+  ASSERT_TRUE(g.known({27, 14}));
+  const grid::Cell c = g.cell({27, 14});
+  EXPECT_EQ(c.logodds, 80);
+  EXPECT_EQ(c.hits, 3);
+  EXPECT_EQ(c.hx, 0);
+  EXPECT_EQ(c.hy, 0);
 }
 
 TEST(RenderGlobalGrid, HalfTurnAndCoarserResolution) {
@@ -102,7 +103,7 @@ TEST(RenderGlobalGrid, OverlapsAddAndSaturate) {
   const GlobalPoses both = poses_of({{0, Pose2D()}, {1, Pose2D()}});
   const grid::OccupancyGrid sum = render_global_grid(m, both, kRes);
   EXPECT_EQ(sum.logodds({4, 0}), 127);  // 200 saturates
-  EXPECT_EQ(sum.find({4, 0})->hits, 9);  // the larger count
+  EXPECT_EQ(sum.cell({4, 0}).hits, 9);  // the larger count
 
   const GlobalPoses mixed = poses_of({{0, Pose2D()}, {2, Pose2D()}});
   EXPECT_EQ(render_global_grid(m, mixed, kRes).logodds({4, 0}), 70);

@@ -28,11 +28,11 @@ MapImage render(const OccupancyGrid& grid, int margin) {
     uint8_t* row = out.image.ptr<uint8_t>(r);
     const int cy = hi.y - r;
     for (int col = 0; col < w; ++col) {
-      const Cell* c = grid.find({lo.x + col, cy});
-      if (!c || c->logodds == 0) continue;
+      const LogOdds l = grid.logodds({lo.x + col, cy});  // 0 in unknown space
+      if (l == 0) continue;
       // map_server reads p = (255 - v) / 255: occupied above 0.65, free below
       // 0.196. Keep the grey level continuous in the probability.
-      const double p = 1.0 / (1.0 + std::exp(-c->logodds / kLogOddsScale));
+      const double p = 1.0 / (1.0 + std::exp(-l / kLogOddsScale));
       row[col] = static_cast<uint8_t>(std::lround(254.0 * (1.0 - p)));
     }
   }

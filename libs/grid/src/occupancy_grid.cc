@@ -58,10 +58,6 @@ Tile& OccupancyGrid::mutable_tile(int tx, int ty) {
   return *slot;
 }
 
-Cell& OccupancyGrid::mutable_cell(CellIndex c) {
-  Tile& t = mutable_tile(c.x >> kTileBits, c.y >> kTileBits);
-  return t.cells[((c.y & kTileMask) << kTileBits) | (c.x & kTileMask)];
-}
 
 bool OccupancyGrid::bounds(CellIndex* min, CellIndex* max) const {
   bool any = false;
@@ -86,6 +82,13 @@ bool OccupancyGrid::bounds(CellIndex* min, CellIndex* max) const {
 size_t OccupancyGrid::tile_count() const {
   size_t n = 0;
   for (const auto& t : tiles_) n += (t != nullptr);
+  return n;
+}
+
+size_t OccupancyGrid::tile_bytes() const {
+  size_t n = 0;
+  for (const auto& t : tiles_)
+    if (t) n += t->bytes();
   return n;
 }
 

@@ -58,14 +58,16 @@ class RayWriter {
   RayWriter(OccupancyGrid& g, LogOdds l_free, LogOdds l_clamp, UpdateMarks& marks)
       : grid_(g), l_free_(l_free), l_clamp_(l_clamp), marks_(marks) {}
 
-  Cell& cell(int x, int y) {
+  // The writable tile of cell (x, y); *index gets the cell's index in it.
+  Tile& tile(int x, int y, int* index) {
     const int tx = x >> kTileBits, ty = y >> kTileBits;
     if (!tile_ || tx != tx_ || ty != ty_) {
       tile_ = &grid_.mutable_tile(tx, ty);
       tx_ = tx;
       ty_ = ty;
     }
-    return tile_->cells[((y & kTileMask) << kTileBits) | (x & kTileMask)];
+    *index = OccupancyGrid::index_in_tile({x, y});
+    return *tile_;
   }
 
   // Marks free the cells from a (inclusive) to b (exclusive), walking back
@@ -85,8 +87,9 @@ class RayWriter {
       // Cells another beam ends in keep their hit (and do not stop the walk).
       if (!at_end && !marks_.is_hit(x, y)) {
         if (!marks_.mark_free(x, y)) return;
-        Cell& c = cell(x, y);
-        c.logodds = static_cast<LogOdds>(std::max<int>(c.logodds + l_free_, -l_clamp_));
+        int i;
+        LogOdds& l = tile(x, y, &i).logodds[i];
+        l = static_cast<LogOdds>(std::max<int>(l + l_free_, -l_clamp_));
       }
       at_end = false;
       if (x == a.x && y == a.y) return;
@@ -159,8 +162,10 @@ void insert_scan(OccupancyGrid& grid, const Pose2D& robot_pose,
   for (const Beam& b : beams) {
     if (!b.hit) continue;
     const bool first = marks.mark_hit(b.end.x, b.end.y);
-    Cell& c = ray.cell(b.end.x, b.end.y);
-    if (first) c.logodds = static_cast<LogOdds>(std::min<int>(c.logodds + l_occ, l_clamp));
+    int i;
+    Tile& t = ray.tile(b.end.x, b.end.y, &i);
+    if (first) t.logodds[i] = static_cast<LogOdds>(std::min<int>(t.logodds[i] + l_occ, l_clamp));
+    HitMean& c = t.mutable_hit(i);
     // Running mean of the hit positions inside the cell (every hit counts;
     // the weight is capped so the mean still follows small changes).
     const Point2D ctr = grid.cell_center(b.end);

@@ -11,8 +11,8 @@ namespace {
 
 TEST(MapExport, PgmYamlAndPngAgree) {
   OccupancyGrid g(0.1);
-  g.mutable_cell({0, 0}).logodds = 100;   // occupied
-  g.mutable_cell({1, 0}).logodds = -100;  // free
+  g.mutable_logodds({0, 0}) = 100;   // occupied
+  g.mutable_logodds({1, 0}) = -100;  // free
   const MapImage m = render(g, 0);
   EXPECT_EQ(m.image.cols, kTileSize);
   EXPECT_EQ(m.image.rows, kTileSize);

@@ -21,13 +21,13 @@ LaserScan fan(int n, float range) {
 
 TEST(OccupancyGrid, UnknownUntilWritten) {
   OccupancyGrid g(0.05);
-  EXPECT_EQ(g.find({3, -7}), nullptr);
+  EXPECT_FALSE(g.known({3, -7}));
   EXPECT_EQ(g.logodds({3, -7}), 0);
-  g.mutable_cell({3, -7}).logodds = 12;
+  g.mutable_logodds({3, -7}) = 12;
   EXPECT_EQ(g.logodds({3, -7}), 12);
   EXPECT_EQ(g.tile_count(), 1u);
   // Far away in negative coordinates: the table grows, old cells survive.
-  g.mutable_cell({-5000, 4000}).logodds = -3;
+  g.mutable_logodds({-5000, 4000}) = -3;
   EXPECT_EQ(g.logodds({3, -7}), 12);
   EXPECT_EQ(g.logodds({-5000, 4000}), -3);
   EXPECT_EQ(g.tile_count(), 2u);
@@ -35,14 +35,14 @@ TEST(OccupancyGrid, UnknownUntilWritten) {
 
 TEST(OccupancyGrid, CopiesShareTilesUntilWritten) {
   OccupancyGrid a(0.05);
-  for (int i = 0; i < 200; ++i) a.mutable_cell({i, i}).logodds = 5;
+  for (int i = 0; i < 200; ++i) a.mutable_logodds({i, i}) = 5;
   OccupancyGrid b = a;  // shares every tile
   size_t shared = 0;
   a.for_each_tile([&](const Tile* ta) {
     b.for_each_tile([&](const Tile* tb) { shared += (ta == tb); });
   });
   EXPECT_EQ(shared, a.tile_count());
-  b.mutable_cell({0, 0}).logodds = 99;  // clones one tile of b only
+  b.mutable_logodds({0, 0}) = 99;  // clones one tile of b only
   EXPECT_EQ(a.logodds({0, 0}), 5);
   EXPECT_EQ(b.logodds({0, 0}), 99);
   shared = 0;
@@ -50,6 +50,41 @@ TEST(OccupancyGrid, CopiesShareTilesUntilWritten) {
     b.for_each_tile([&](const Tile* tb) { shared += (ta == tb); });
   });
   EXPECT_EQ(shared, a.tile_count() - 1);
+}
+
+TEST(OccupancyGrid, HitStatisticsOnlyInTilesThatWereHit) {
+  // A fan of 10 m beams: the tiles around the arc of hits hold hit
+  // statistics, the tiles the rays only cross do not (a quarter of the size).
+  OccupancyGrid g(0.05);
+  insert_scan(g, Pose2D(0, 0, 0), fan(361, 10.0f), InsertionOptions{});
+  size_t with_hits = 0, without = 0;
+  g.for_each_tile([&](const Tile* t) { (t->hit_means ? with_hits : without) += 1; });
+  EXPECT_GT(with_hits, 0u);
+  EXPECT_GT(without, with_hits);  // the half-disc's inside outweighs its rim
+  EXPECT_EQ(g.tile_bytes(),
+            g.tile_count() * sizeof(Tile) + with_hits * sizeof(Tile::HitPlane));
+  // Cells of a tile without the plane read as never hit.
+  const CellIndex inside = g.cell_of(2.0, 0.0);
+  ASSERT_EQ(g.tile_of(inside)->hit_means, nullptr);
+  EXPECT_EQ(g.cell(inside).hits, 0);
+  EXPECT_LT(g.cell(inside).logodds, 0);
+  // Copy-on-write copies the plane with the tile: the copies are independent.
+  const CellIndex rim = g.cell_of(10.0 + 1e-6, 0.0);
+  OccupancyGrid copy = g;
+  Cell c = g.cell(rim);
+  ASSERT_GT(c.hits, 0);
+  c.hits = 200;
+  copy.set_cell(rim, c);
+  EXPECT_EQ(copy.cell(rim).hits, 200);
+  EXPECT_NE(g.cell(rim).hits, 200);
+  // Setting a cell without hit statistics does not create the plane.
+  OccupancyGrid h(0.05);
+  h.set_cell({1, 1}, Cell{-10, 0, 0, 0});
+  EXPECT_EQ(h.tile_of({1, 1})->hit_means, nullptr);
+  h.set_cell({2, 1}, Cell{30, 1, 5, -5});
+  ASSERT_NE(h.tile_of({2, 1})->hit_means, nullptr);
+  EXPECT_EQ(h.cell({2, 1}).hx, 5);
+  EXPECT_EQ(h.cell({1, 1}).logodds, -10);
 }
 
 TEST(ScanInsertion, HitsOccupiedRaysFree) {
@@ -63,9 +98,8 @@ TEST(ScanInsertion, HitsOccupiedRaysFree) {
   EXPECT_EQ(g.logodds(g.cell_of(-1.0, 0.0)), 0);
   // The hit mean sits near the true end point (sub-cell precision).
   const CellIndex c = g.cell_of(2.0 + 1e-6, 0.0);
-  const Cell* cell = g.find(c);
-  ASSERT_NE(cell, nullptr);
-  const Point2D m = g.hit_mean(c, *cell);
+  ASSERT_TRUE(g.known(c));
+  const Point2D m = g.hit_mean(c, g.cell(c));
   EXPECT_NEAR(m.x, 2.0, 0.01);
 }
 

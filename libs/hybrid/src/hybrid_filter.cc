@@ -427,7 +427,9 @@ size_t HybridFilter::map_memory_bytes() const {
       if (const auto& m = h.map.area(id).map)
         m->for_each_tile([&](const grid::Tile* t) { tiles.insert(t); });
   }
-  return tiles.size() * sizeof(grid::Tile);
+  size_t bytes = 0;
+  for (const grid::Tile* t : tiles) bytes += t->bytes();
+  return bytes;
 }
 
 topology::Session HybridFilter::session() const {

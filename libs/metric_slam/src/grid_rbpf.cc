@@ -324,7 +324,9 @@ size_t GridRbpf::map_memory_bytes() const {
   std::unordered_set<const grid::Tile*> tiles;
   for (const auto& p : particles_)
     p.map.for_each_tile([&](const grid::Tile* t) { tiles.insert(t); });
-  return tiles.size() * sizeof(grid::Tile);
+  size_t bytes = 0;
+  for (const grid::Tile* t : tiles) bytes += t->bytes();
+  return bytes;
 }
 
 }  // namespace hmt::metric_slam

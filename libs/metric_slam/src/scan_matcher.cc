@@ -57,8 +57,8 @@ void ScanMatcher::for_each_match(const grid::OccupancyGrid& map, const Pose2D& p
     const grid::CellIndex hc = map.cell_of(hx, hy), fc = map.cell_of(fx, fy);
     double best = std::numeric_limits<double>::infinity();
     Point2D best_mean;
-    auto consider = [&](const grid::CellIndex& cq, const grid::Cell& cell) {
-      const Point2D m = map.hit_mean(cq, cell);
+    auto consider = [&](const grid::CellIndex& cq, const grid::HitMean& h) {
+      const Point2D m = map.hit_mean(cq, h);
       const double d2 = (hx - m.x) * (hx - m.x) + (hy - m.y) * (hy - m.y);
       if (d2 < best) {
         best = d2;
@@ -78,22 +78,23 @@ void ScanMatcher::for_each_match(const grid::OccupancyGrid& map, const Pose2D& p
       for (int dy = -w; dy <= w; ++dy)
         for (int dx = -w; dx <= w; ++dx) {
           const grid::CellIndex cq{hc.x + dx, hc.y + dy};
-          const grid::Cell& cell = grid::OccupancyGrid::cell_in(*th, cq);
-          if (cell.logodds < occ_threshold_) continue;
-          if (tf && grid::OccupancyGrid::cell_in(*tf, {fc.x + dx, fc.y + dy}).logodds >=
+          const int i = grid::OccupancyGrid::index_in_tile(cq);
+          if (th->logodds[i] < occ_threshold_) continue;
+          if (tf && tf->logodds[grid::OccupancyGrid::index_in_tile({fc.x + dx, fc.y + dy})] >=
                         occ_threshold_)
             continue;
-          consider(cq, cell);
+          consider(cq, th->hit(i));
         }
     } else {
       for (int dy = -w; dy <= w; ++dy)
         for (int dx = -w; dx <= w; ++dx) {
           const grid::CellIndex cq{hc.x + dx, hc.y + dy};
-          const grid::Cell* cell = map.find(cq);
-          if (!cell || cell->logodds < occ_threshold_) continue;
-          const grid::Cell* fcell = map.find({fc.x + dx, fc.y + dy});
-          if (fcell && fcell->logodds >= occ_threshold_) continue;
-          consider(cq, *cell);
+          const grid::Tile* t = map.tile_of(cq);
+          const int i = grid::OccupancyGrid::index_in_tile(cq);
+          if (!t || t->logodds[i] < occ_threshold_) continue;
+          // Unknown space reads 0, below the threshold, as before.
+          if (map.logodds({fc.x + dx, fc.y + dy}) >= occ_threshold_) continue;
+          consider(cq, t->hit(i));
         }
     }
     if (best < std::numeric_limits<double>::infinity()) f(i, hx, hy, best, best_mean);

@@ -158,21 +158,18 @@ void write_grid(Writer& w, const grid::OccupancyGrid& g) {
               ty1 = floor_div(hi.y, grid::kTileSize);
     for (int ty = ty0; ty <= ty1; ++ty)
       for (int tx = tx0; tx <= tx1; ++tx)
-        if (g.find({tx * grid::kTileSize, ty * grid::kTileSize}))
-          tiles.emplace_back(tx, ty);
+        if (g.tile(tx, ty)) tiles.emplace_back(tx, ty);
   }
   w.count(tiles.size(), "tiles");
   std::string plane(kCellsPerTile, '\0');
   for (const auto& [tx, ty] : tiles) {
     w.i32(tx);
     w.i32(ty);
-    // find() of the tile's first cell points at cells[0] of its Tile, and a
-    // Tile's cells are one contiguous array: walk it in storage order.
-    const grid::Cell* cells =
-        g.find({tx * grid::kTileSize, ty * grid::kTileSize});
+    // The cells in the tile's storage order (index_in_tile).
+    const grid::Tile& t = *g.tile(tx, ty);
     for (int field = 0; field < 4; ++field) {
       for (int i = 0; i < kCellsPerTile; ++i) {
-        const grid::Cell& c = cells[i];
+        const grid::Cell c = t.cell(i);
         const uint8_t b = field == 0   ? static_cast<uint8_t>(c.logodds)
                           : field == 1 ? c.hits
                           : field == 2 ? static_cast<uint8_t>(c.hx)
@@ -369,13 +366,14 @@ std::shared_ptr<const grid::OccupancyGrid> read_grid(Reader& r, const std::strin
     const char* planes = r.take(4 * kCellsPerTile, "tile cells");
     grid::Tile& tile = g->mutable_tile(tx, ty);
     for (int i = 0; i < kCellsPerTile; ++i) {
-      grid::Cell& c = tile.cells[static_cast<size_t>(i)];
+      grid::Cell c;
       c.logodds = static_cast<grid::LogOdds>(static_cast<uint8_t>(planes[i]));
       c.hits = static_cast<uint8_t>(planes[kCellsPerTile + i]);
       c.hx = static_cast<int8_t>(
           static_cast<uint8_t>(planes[2 * kCellsPerTile + i]));
       c.hy = static_cast<int8_t>(
           static_cast<uint8_t>(planes[3 * kCellsPerTile + i]));
+      tile.set(i, c);  // the hit plane only if some cell has hit statistics
     }
   }
   return g;

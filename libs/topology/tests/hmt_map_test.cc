@@ -162,19 +162,19 @@ TEST(HmtMap, CopiesShareAreasUntilOneIsChanged) {
 TEST(HmtMap, ArchivedMapIsASharedImmutableSnapshot) {
   HmtMap m = three_areas();
   grid::OccupancyGrid live(0.05);
-  for (int i = -100; i < 100; ++i) live.mutable_cell({i, 2 * i}).logodds = 30;
+  for (int i = -100; i < 100; ++i) live.mutable_logodds({i, 2 * i}) = 30;
   m.archive_map(0, live);
   const grid::OccupancyGrid& snap = *m.area(0).map;
   // The snapshot points at the very same tiles as the live grid.
-  EXPECT_EQ(snap.find({10, 20}), live.find({10, 20}));
+  EXPECT_EQ(snap.tile_of({10, 20}), live.tile_of({10, 20}));
   EXPECT_EQ(snap.tile_count(), live.tile_count());
   // The live grid keeps mapping: it clones the tile it writes, the snapshot
   // does not change.
-  live.mutable_cell({10, 20}).logodds = -40;
-  EXPECT_NE(snap.find({10, 20}), live.find({10, 20}));
+  live.mutable_logodds({10, 20}) = -40;
+  EXPECT_NE(snap.tile_of({10, 20}), live.tile_of({10, 20}));
   EXPECT_EQ(snap.logodds({10, 20}), 30);
   EXPECT_EQ(live.logodds({10, 20}), -40);
-  EXPECT_EQ(snap.find({-99, -198}), live.find({-99, -198}));
+  EXPECT_EQ(snap.tile_of({-99, -198}), live.tile_of({-99, -198}));
   // Copies of the HMT map share the snapshot.
   const HmtMap copy = m;
   EXPECT_EQ(copy.area(0).map.get(), &snap);

@@ -55,12 +55,14 @@ void write_bytes(const std::string& path, const std::string& bytes) {
 grid::OccupancyGrid random_grid(double resolution, Random& rng) {
   grid::OccupancyGrid g(resolution);
   for (int i = 0; i < 3000; ++i) {
-    grid::Cell& c = g.mutable_cell({static_cast<int>(rng.uniform(-90, 70)),
-                                    static_cast<int>(rng.uniform(-40, 100))});
+    const grid::CellIndex at{static_cast<int>(rng.uniform(-90, 70)),
+                             static_cast<int>(rng.uniform(-40, 100))};
+    grid::Cell c;
     c.logodds = static_cast<int8_t>(rng.uniform(-127, 127));
     c.hits = static_cast<uint8_t>(rng.uniform(0, 255));
     c.hx = static_cast<int8_t>(rng.uniform(-127, 127));
     c.hy = static_cast<int8_t>(rng.uniform(-127, 127));
+    g.set_cell(at, c);
   }
   return g;
 }
@@ -109,7 +111,7 @@ Fixture sample_topology() {
   grid::OccupancyGrid g0 = random_grid(0.05, rng);
   grid::OccupancyGrid g1 = g0;  // shares g0's tiles in memory ...
   for (int i = 0; i < 50; ++i)  // ... except where it is changed
-    g1.mutable_cell({static_cast<int>(rng.uniform(-20, 20)), 5}).logodds = 77;
+    g1.mutable_logodds({static_cast<int>(rng.uniform(-20, 20)), 5}) = 77;
   m.archive_map(0, g0);
   m.archive_map(1, g1);
   m.archive_map(7, grid::OccupancyGrid(0.1));  // archived, but empty
@@ -170,16 +172,15 @@ void expect_same_grid(const grid::OccupancyGrid& a,
   size_t cells = 0, differing = 0;
   for (int y = alo.y; y <= ahi.y; ++y)
     for (int x = alo.x; x <= ahi.x; ++x) {
-      const grid::Cell* ca = a.find({x, y});
-      const grid::Cell* cb = b.find({x, y});
-      if ((ca == nullptr) != (cb == nullptr)) {
+      if (a.known({x, y}) != b.known({x, y})) {
         ++differing;
         continue;
       }
-      if (!ca) continue;
+      if (!a.known({x, y})) continue;
+      const grid::Cell ca = a.cell({x, y}), cb = b.cell({x, y});
       ++cells;
-      if (ca->logodds != cb->logodds || ca->hits != cb->hits ||
-          ca->hx != cb->hx || ca->hy != cb->hy)
+      if (ca.logodds != cb.logodds || ca.hits != cb.hits ||
+          ca.hx != cb.hx || ca.hy != cb.hy)
         ++differing;
     }
   EXPECT_EQ(differing, 0u);
@@ -336,10 +337,10 @@ TEST(TopologyFile, OnlyAllocatedTilesAreStoredAndDeflated) {
   HmtMap m;
   m.add_area(0);
   grid::OccupancyGrid g(0.05);
-  g.mutable_cell({-48000, 5}).logodds = 40;
-  g.mutable_cell({48000, 5}).logodds = 40;
+  g.mutable_logodds({-48000, 5}) = 40;
+  g.mutable_logodds({48000, 5}) = 40;
   for (int y = 0; y < 320; ++y)
-    for (int x = 0; x < 320; ++x) g.mutable_cell({x, y + 992}).logodds = -20;
+    for (int x = 0; x < 320; ++x) g.mutable_logodds({x, y + 992}) = -20;
   m.archive_map(0, g);
   const std::string bytes = encode_topology(m, {});
   EXPECT_EQ(g.tile_count(), 102u);
@@ -348,7 +349,7 @@ TEST(TopologyFile, OnlyAllocatedTilesAreStoredAndDeflated) {
   EXPECT_EQ(got.map.area(0).map->tile_count(), 102u);
   EXPECT_EQ(got.map.area(0).map->logodds({48000, 5}), 40);
   EXPECT_EQ(got.map.area(0).map->logodds({319, 1311}), -20);
-  EXPECT_EQ(got.map.area(0).map->find({0, 5}), nullptr);
+  EXPECT_FALSE(got.map.area(0).map->known({0, 5}));
 }
 
 TEST(TopologyFile, TruncatedFilesAreInputErrors) {
@@ -552,7 +553,7 @@ TEST(SessionFile, MapsHypothesesShareAreStoredAndLoadedOnce) {
   Session s = sample_session();
   grid::OccupancyGrid big(0.05);
   for (int y = 0; y < 200; ++y)
-    for (int x = 0; x < 200; ++x) big.mutable_cell({x, y}).logodds = (x * 7 + y * 3) % 50;
+    for (int x = 0; x < 200; ++x) big.mutable_logodds({x, y}) = (x * 7 + y * 3) % 50;
   s.hypotheses[0].map.archive_map(0, big);
   s.hypotheses[1].map = s.hypotheses[0].map;  // shares area 0's map
   Session one = s;

@@ -21,7 +21,7 @@ void for_each_obstacle(const grid::OccupancyGrid& map, grid::LogOdds occupied, F
       if (!t) continue;
       for (int j = 0; j < kTileSize; ++j)
         for (int i = 0; i < kTileSize; ++i)
-          if (t->cells[static_cast<size_t>((j << kTileBits) | i)].logodds >= occupied)
+          if (t->logodds[static_cast<size_t>((j << kTileBits) | i)] >= occupied)
             f(tx * kTileSize + i, ty * kTileSize + j);
     }
 }

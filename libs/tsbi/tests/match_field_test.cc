@@ -24,9 +24,9 @@ constexpr grid::LogOdds kOccupied = 10;
 TEST(MatchField, DistanceIsChebyshevToTheNearestObstacle) {
   grid::OccupancyGrid g(0.05);
   const std::vector<grid::CellIndex> obstacles = {{3, 4}, {10, -2}, {-5, 7}};
-  for (const auto& c : obstacles) g.mutable_cell(c).logodds = 40;
-  g.mutable_cell({0, 0}).logodds = 5;     // below the threshold: not an obstacle
-  g.mutable_cell({20, 20}).logodds = -30; // free
+  for (const auto& c : obstacles) g.mutable_logodds(c) = 40;
+  g.mutable_logodds({0, 0}) = 5;     // below the threshold: not an obstacle
+  g.mutable_logodds({20, 20}) = -30; // free
   const MatchField f(g, kOccupied);
   for (int y = -30; y <= 30; ++y)
     for (int x = -30; x <= 30; ++x) {
@@ -45,7 +45,7 @@ TEST(MatchField, DistanceIsChebyshevToTheNearestObstacle) {
 
 TEST(MatchField, AMapWithoutObstaclesIsFarEverywhere) {
   grid::OccupancyGrid g(0.05);
-  g.mutable_cell({1, 1}).logodds = -20;
+  g.mutable_logodds({1, 1}) = -20;
   const MatchField f(g, kOccupied);
   EXPECT_FALSE(f.has_obstacles());
   EXPECT_EQ(f.distance(1, 1), MatchField::kFar);
