@@ -5,15 +5,18 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <cstring>
 #include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 #include <stdexcept>
+#include <utility>
 
 #include "hmt/common/error.h"
 
 namespace hmt::global_map {
 namespace {
 
+using grid::Bgr;
+using grid::Image;
 using topology::HmtMap;
 using topology::PoseGaussian;
 
@@ -22,7 +25,7 @@ constexpr uint8_t kGrey = 205;
 // A blank 6 m x 5 m map image at 5 cm, its lower-left corner at (-1, -2).
 grid::MapImage blank_base() {
   grid::MapImage base;
-  base.image = cv::Mat(100, 120, CV_8UC1, cv::Scalar(kGrey));
+  base.image = Image(120, 100, 1, kGrey);
   base.resolution = 0.05;
   base.origin_x = -1.0;
   base.origin_y = -2.0;
@@ -48,25 +51,26 @@ Scene two_areas() {
   return s;
 }
 
-cv::Point nearest_pixel(const grid::MapImage& base, const Point2D& p) {
-  const cv::Point2d q = pixel_of(base, p);
+// (column, row) of the pixel nearest to a map-frame point.
+using Px = std::pair<int, int>;
+Px nearest_pixel(const grid::MapImage& base, const Point2D& p) {
+  const grid::Pixel q = pixel_of(base, p);
   return {static_cast<int>(std::lround(q.x)), static_cast<int>(std::lround(q.y))};
 }
 
-bool is_grey(const cv::Vec3b& v) { return v[0] == v[1] && v[1] == v[2]; }
+Bgr at(const Image& image, Px p) { return image.bgr(p.first, p.second); }
+
+bool is_grey(const Bgr& v) { return v.b == v.g && v.g == v.r; }
 
 // Largest horizontal and vertical pixel distance from `centre` of the
 // pixels painted exactly in `colour`.
-cv::Point2i extent_of(const cv::Mat& image, const cv::Scalar& colour,
-                      const cv::Point& centre) {
-  const cv::Vec3b c(static_cast<uchar>(colour[0]), static_cast<uchar>(colour[1]),
-                    static_cast<uchar>(colour[2]));
-  cv::Point2i extent(0, 0);
-  for (int r = 0; r < image.rows; ++r)
-    for (int col = 0; col < image.cols; ++col)
-      if (image.at<cv::Vec3b>(r, col) == c) {
-        extent.x = std::max(extent.x, std::abs(col - centre.x));
-        extent.y = std::max(extent.y, std::abs(r - centre.y));
+Px extent_of(const Image& image, const Bgr& colour, Px centre) {
+  Px extent(0, 0);
+  for (int r = 0; r < image.height(); ++r)
+    for (int col = 0; col < image.width(); ++col)
+      if (image.bgr(col, r) == colour) {
+        extent.first = std::max(extent.first, std::abs(col - centre.first));
+        extent.second = std::max(extent.second, std::abs(r - centre.second));
       }
   return extent;
 }
@@ -74,7 +78,7 @@ cv::Point2i extent_of(const cv::Mat& image, const cv::Scalar& colour,
 TEST(Overlay, PixelOfFollowsTheMapImageConvention) {
   const grid::MapImage base = blank_base();
   // The centre of the lower-left pixel is (0, rows - 1).
-  const cv::Point2d p = pixel_of(base, {-1.0 + 0.025, -2.0 + 0.025});
+  const grid::Pixel p = pixel_of(base, {-1.0 + 0.025, -2.0 + 0.025});
   EXPECT_NEAR(p.x, 0.0, 1e-9);
   EXPECT_NEAR(p.y, 99.0, 1e-9);
   // y grows upwards, rows downwards.
@@ -86,59 +90,81 @@ TEST(Overlay, DrawsAreasAndArcsInColourOverTheGreyMap) {
   const grid::MapImage base = blank_base();
   const Scene s = two_areas();
   const OverlayOptions options;
-  const cv::Mat out = draw_topology_overlay(base, s.map, s.poses, options);
-  EXPECT_EQ(out.type(), CV_8UC3);
-  EXPECT_EQ(out.size(), base.image.size());
+  const Image out = draw_topology_overlay(base, s.map, s.poses, options);
+  EXPECT_EQ(out.channels(), 3);
+  EXPECT_EQ(out.width(), base.image.width());
+  EXPECT_EQ(out.height(), base.image.height());
   for (AreaId id : {0u, 1u}) {
     const Pose2D& p = s.poses.poses.at(id).mean;
-    const cv::Vec3b at = out.at<cv::Vec3b>(nearest_pixel(base, {p.x, p.y}));
-    EXPECT_FALSE(is_grey(at)) << "area " << id;
+    EXPECT_EQ(at(out, nearest_pixel(base, {p.x, p.y})), options.origin_colour)
+        << "area " << id;
   }
-  // Half-way along the arc.
-  const cv::Vec3b mid = out.at<cv::Vec3b>(nearest_pixel(base, {1.0, 0.25}));
-  EXPECT_EQ(mid, cv::Vec3b(200, 120, 0));
+  // Along the arc, between the root's dot and area 1's ellipse: in every
+  // column, the pixel nearest to the segment.
+  const grid::Pixel p0 = pixel_of(base, {0.0, 0.0}), p1 = pixel_of(base, {2.0, 0.5});
+  for (int col = 24; col <= 34; ++col) {
+    const double row = p0.y + (col - p0.x) * (p1.y - p0.y) / (p1.x - p0.x);
+    EXPECT_EQ(out.bgr(col, static_cast<int>(std::floor(row + 0.5))), options.arc_colour)
+        << "column " << col;
+  }
   // The map away from the drawing is untouched.
-  EXPECT_EQ(out.at<cv::Vec3b>(0, 0), cv::Vec3b(kGrey, kGrey, kGrey));
-  EXPECT_EQ(out.at<cv::Vec3b>(99, 119), cv::Vec3b(kGrey, kGrey, kGrey));
+  EXPECT_EQ(out.bgr(0, 0), Bgr::grey(kGrey));
+  EXPECT_EQ(out.bgr(119, 99), Bgr::grey(kGrey));
+  // The labels, "0" and "1", in their colour up and right of the origins.
+  for (AreaId id : {0u, 1u}) {
+    const Px o = nearest_pixel(base, {s.poses.poses.at(id).mean.x,
+                                      s.poses.poses.at(id).mean.y});
+    int n = 0;
+    for (int dy = -20; dy <= 0; ++dy)
+      for (int dx = 0; dx <= 20; ++dx)
+        if (o.first + dx < out.width() && o.second + dy >= 0 &&
+            out.bgr(o.first + dx, o.second + dy) == options.label_colour)
+          ++n;
+    EXPECT_GE(n, 7) << "label of area " << id;
+  }
+  int off_grey = 0;
+  for (int r = 0; r < out.height(); ++r)
+    for (int c = 0; c < out.width(); ++c) off_grey += !is_grey(out.bgr(c, r));
+  EXPECT_GT(off_grey, 0);
 }
 
 TEST(Overlay, EllipseGrowsWithTheScaleAndFollowsTheCovariance) {
   const grid::MapImage base = blank_base();
   const Scene s = two_areas();
-  const cv::Point centre = nearest_pixel(base, {2.0, 0.5});
+  const Px centre = nearest_pixel(base, {2.0, 0.5});
   OverlayOptions options;
   options.draw_labels = false;
   // Semi-axes of the 95% ellipse: sqrt(5.991) * (0.1, 0.05) m, i.e. 4.9 and
   // 2.4 pixels, times the scale.
   options.ellipse_scale = 1.0;
-  const cv::Point2i small = extent_of(
+  const Px small = extent_of(
       draw_topology_overlay(base, s.map, s.poses, options),
       options.ellipse_colour, centre);
   options.ellipse_scale = 5.0;
-  const cv::Point2i large = extent_of(
+  const Px large = extent_of(
       draw_topology_overlay(base, s.map, s.poses, options),
       options.ellipse_colour, centre);
-  EXPECT_NEAR(small.x, 4.9, 1.0);
-  EXPECT_NEAR(large.x, 24.5, 1.0);
-  EXPECT_NEAR(large.y, 12.2, 1.0);
+  EXPECT_NEAR(small.first, 4.9, 1.0);
+  EXPECT_NEAR(large.first, 24.5, 1.0);
+  EXPECT_NEAR(large.second, 12.2, 1.0);
   // The root is known exactly: no ellipse of its own, so nothing coloured
   // that way near it.
-  const cv::Mat out = draw_topology_overlay(base, s.map, s.poses, options);
-  const cv::Point root = nearest_pixel(base, {0.0, 0.0});
-  const cv::Vec3b ellipse(0, 160, 0);
+  const Image out = draw_topology_overlay(base, s.map, s.poses, options);
+  const Px root = nearest_pixel(base, {0.0, 0.0});
+  const Bgr ellipse{0, 160, 0};
   for (int dr = -6; dr <= 6; ++dr)
     for (int dc = -6; dc <= 6; ++dc)
-      EXPECT_NE(out.at<cv::Vec3b>(root.y + dr, root.x + dc), ellipse);
+      EXPECT_NE(out.bgr(root.first + dc, root.second + dr), ellipse);
   options.ellipse_scale = 0.0;
   EXPECT_EQ(extent_of(draw_topology_overlay(base, s.map, s.poses, options),
                       options.ellipse_colour, centre),
-            cv::Point2i(0, 0));
+            Px(0, 0));
 }
 
 TEST(Overlay, RejectsBadInput) {
   const Scene s = two_areas();
   grid::MapImage colour = blank_base();
-  cv::cvtColor(colour.image, colour.image, cv::COLOR_GRAY2BGR);
+  colour.image = grid::grey_to_bgr(colour.image);
   EXPECT_THROW(draw_topology_overlay(colour, s.map, s.poses),
                std::invalid_argument);
   grid::MapImage unscaled = blank_base();
@@ -154,16 +180,22 @@ TEST(Overlay, RejectsBadInput) {
 TEST(Overlay, WriteColorPngRoundTripsAndFailsCleanly) {
   const grid::MapImage base = blank_base();
   const Scene s = two_areas();
-  const cv::Mat out = draw_topology_overlay(base, s.map, s.poses);
+  const Image out = draw_topology_overlay(base, s.map, s.poses);
   const std::string dir = testing::TempDir() + "/hmt_overlay";
   std::filesystem::create_directories(dir);
   write_color_png(out, dir + "/overlay.png");
   const cv::Mat back = cv::imread(dir + "/overlay.png", cv::IMREAD_COLOR);
   ASSERT_FALSE(back.empty());
-  EXPECT_EQ(cv::norm(out, back, cv::NORM_INF), 0.0);
+  ASSERT_EQ(back.cols, out.width());
+  ASSERT_EQ(back.rows, out.height());
+  for (int r = 0; r < out.height(); ++r)
+    ASSERT_EQ(std::memcmp(back.ptr<uint8_t>(r), out.row(r),
+                          static_cast<size_t>(out.width()) * 3),
+              0)
+        << "row " << r;
   EXPECT_THROW(write_color_png(out, dir + "/missing/overlay.png"), OutputError);
   EXPECT_FALSE(std::filesystem::exists(dir + "/missing"));
-  EXPECT_THROW(write_color_png(cv::Mat(), dir + "/empty.png"), OutputError);
+  EXPECT_THROW(write_color_png(Image(), dir + "/empty.png"), OutputError);
   EXPECT_FALSE(std::filesystem::exists(dir + "/empty.png"));
 }
 

@@ -1,5 +1,6 @@
 #include "hmt/grid/map_export.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -13,7 +14,7 @@ MapImage render(const OccupancyGrid& grid, int margin) {
   out.resolution = grid.resolution();
   CellIndex lo, hi;
   if (!grid.bounds(&lo, &hi)) {
-    out.image = cv::Mat(1, 1, CV_8UC1, cv::Scalar(205));
+    out.image = Image(1, 1, 1, 205);
     return out;
   }
   lo.x -= margin;
@@ -21,11 +22,11 @@ MapImage render(const OccupancyGrid& grid, int margin) {
   hi.x += margin;
   hi.y += margin;
   const int w = hi.x - lo.x + 1, h = hi.y - lo.y + 1;
-  out.image = cv::Mat(h, w, CV_8UC1, cv::Scalar(205));
+  out.image = Image(w, h, 1, 205);
   out.origin_x = lo.x * grid.resolution();
   out.origin_y = lo.y * grid.resolution();
   for (int r = 0; r < h; ++r) {
-    uint8_t* row = out.image.ptr<uint8_t>(r);
+    uint8_t* row = out.image.row(r);
     const int cy = hi.y - r;
     for (int col = 0; col < w; ++col) {
       const LogOdds l = grid.logodds({lo.x + col, cy});  // 0 in unknown space
@@ -47,9 +48,9 @@ void write_pgm_yaml(const MapImage& m, const std::string& base) {
   const std::string pgm = base + ".pgm";
   write_file_atomically(pgm, [&](std::ostream& os) {
     os << "P5\n# HMT-SLAM occupancy grid\n"
-       << m.image.cols << " " << m.image.rows << "\n255\n";
-    for (int r = 0; r < m.image.rows; ++r)
-      os.write(reinterpret_cast<const char*>(m.image.ptr<uint8_t>(r)), m.image.cols);
+       << m.image.width() << " " << m.image.height() << "\n255\n";
+    for (int r = 0; r < m.image.height(); ++r)
+      os.write(reinterpret_cast<const char*>(m.image.row(r)), m.image.width());
   });
   char yaml[512];
   std::snprintf(yaml, sizeof yaml,

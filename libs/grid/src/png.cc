@@ -45,7 +45,7 @@ void on_flush(png_structp) {}
 // The libpng calls. An error jumps from inside them back to the setjmp
 // here, over this frame and libpng's: every local is trivially
 // destructible, so that the jump skips no destructor.
-bool encode(const cv::Mat& image, int colour_type, Sink* sink) {
+bool encode(const Image& image, int colour_type, Sink* sink) {
   png_structp png =
       png_create_write_struct(PNG_LIBPNG_VER_STRING, sink, on_error, on_warning);
   if (!png) {
@@ -63,8 +63,8 @@ bool encode(const cv::Mat& image, int colour_type, Sink* sink) {
     return false;
   }
   png_set_write_fn(png, sink, on_write, on_flush);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(image.cols),
-               static_cast<png_uint_32>(image.rows), 8, colour_type,
+  png_set_IHDR(png, info, static_cast<png_uint_32>(image.width()),
+               static_cast<png_uint_32>(image.height()), 8, colour_type,
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);
   // cv::imencode's settings: fast, and maps are mostly long runs of one
@@ -74,34 +74,22 @@ bool encode(const cv::Mat& image, int colour_type, Sink* sink) {
   png_set_compression_level(png, Z_BEST_SPEED);
   png_set_compression_strategy(png, Z_RLE);
   png_write_info(png, info);
-  if (image.channels() > 1) png_set_bgr(png);  // OpenCV's order in memory
-  for (int r = 0; r < image.rows; ++r)
-    png_write_row(png, image.ptr<uint8_t>(r));  // each row from its own step
+  if (image.channels() == 3) png_set_bgr(png);  // the order in memory
+  for (int r = 0; r < image.height(); ++r) png_write_row(png, image.row(r));
   png_write_end(png, info);
   png_destroy_write_struct(&png, &info);
   return true;
 }
 
-int colour_type(const cv::Mat& image, const std::string& path) {
+int colour_type(const Image& image, const std::string& path) {
   if (image.empty())
     throw OutputError("cannot write an empty image to '" + path + "'");
-  if (image.depth() != CV_8U)
-    throw OutputError("cannot encode PNG for '" + path +
-                      "': only 8-bit images are supported");
-  switch (image.channels()) {
-    case 1: return PNG_COLOR_TYPE_GRAY;
-    case 3: return PNG_COLOR_TYPE_RGB;
-    case 4: return PNG_COLOR_TYPE_RGB_ALPHA;
-    default:
-      throw OutputError("cannot encode PNG for '" + path + "': " +
-                        std::to_string(image.channels()) +
-                        " channels (1, 3 or 4 supported)");
-  }
+  return image.channels() == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY;
 }
 
 }  // namespace
 
-std::vector<uint8_t> encode_png(const cv::Mat& image, const std::string& path) {
+std::vector<uint8_t> encode_png(const Image& image, const std::string& path) {
   const int type = colour_type(image, path);
   std::vector<uint8_t> bytes;
   Sink sink{&bytes, {}};
@@ -110,7 +98,7 @@ std::vector<uint8_t> encode_png(const cv::Mat& image, const std::string& path) {
   return bytes;
 }
 
-void write_png_file(const cv::Mat& image, const std::string& path) {
+void write_png_file(const Image& image, const std::string& path) {
   const std::vector<uint8_t> bytes = encode_png(image, path);
   write_file_atomically(path, [&](std::ostream& os) {
     os.write(reinterpret_cast<const char*>(bytes.data()),

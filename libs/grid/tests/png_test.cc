@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
+#include <random>
 
 #include "hmt/common/error.h"
 
@@ -18,34 +19,43 @@ std::string temp_dir() {
   return dir;
 }
 
-cv::Mat random_image(int rows, int cols, int type, int seed) {
-  cv::Mat m(rows, cols, type);
-  cv::RNG rng(static_cast<uint64_t>(seed));
-  rng.fill(m, cv::RNG::UNIFORM, 0, 256);
+Image random_image(int width, int height, int channels, int seed) {
+  Image m(width, height, channels);
+  std::mt19937 rng(static_cast<uint32_t>(seed));
+  for (int y = 0; y < height; ++y)
+    for (int i = 0; i < width * channels; ++i)
+      m.row(y)[i] = static_cast<uint8_t>(rng() & 0xFF);
   return m;
 }
 
-// OpenCV's decoder, an independent reader, gets the same pixels back.
-void expect_round_trip(const cv::Mat& image, const std::string& name) {
+// OpenCV's decoder, an independent reader, gets the same pixels back (BGR
+// too is OpenCV's order).
+void expect_round_trip(const Image& image, const std::string& name) {
   const std::string path = temp_dir() + "/" + name;
   write_png_file(image, path);
   const cv::Mat back = cv::imread(path, cv::IMREAD_UNCHANGED);
   ASSERT_FALSE(back.empty()) << path;
-  ASSERT_EQ(back.type(), image.type()) << path;
-  ASSERT_EQ(back.size(), image.size()) << path;
-  EXPECT_EQ(cv::norm(image, back, cv::NORM_INF), 0.0) << path;
+  ASSERT_EQ(back.type(), CV_8UC(image.channels())) << path;
+  ASSERT_EQ(back.cols, image.width()) << path;
+  ASSERT_EQ(back.rows, image.height()) << path;
+  for (int y = 0; y < image.height(); ++y)
+    ASSERT_EQ(std::memcmp(back.ptr<uint8_t>(y), image.row(y),
+                          static_cast<size_t>(image.width() * image.channels())),
+              0)
+        << path << " row " << y;
 }
 
-TEST(Png, GreyColourAndAlphaImagesRoundTrip) {
-  expect_round_trip(random_image(37, 53, CV_8UC1, 1), "grey.png");
-  expect_round_trip(random_image(37, 53, CV_8UC3, 2), "bgr.png");
-  expect_round_trip(random_image(37, 53, CV_8UC4, 3), "bgra.png");
-  expect_round_trip(cv::Mat(1, 1, CV_8UC1, cv::Scalar(205)), "pixel.png");
+TEST(Png, GreyAndColourImagesRoundTrip) {
+  expect_round_trip(random_image(53, 37, 1, 1), "grey.png");
+  expect_round_trip(random_image(53, 37, 3, 2), "bgr.png");
+  expect_round_trip(Image(1, 1, 1, 205), "pixel.png");
 }
 
 TEST(Png, ColourIsStoredAsRgbLikeOtherWriters) {
-  // Pure blue in OpenCV's BGR order.
-  const cv::Mat blue(2, 3, CV_8UC3, cv::Scalar(255, 0, 0));
+  // Pure blue, in memory as B, G, R.
+  Image blue(3, 2, 3);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x) blue.at(x, y, 0) = 255;
   const std::vector<uint8_t> bytes = encode_png(blue, "blue.png");
   ASSERT_GT(bytes.size(), 8u);
   EXPECT_EQ(std::string(bytes.begin(), bytes.begin() + 8),
@@ -70,24 +80,14 @@ TEST(Png, ColourIsStoredAsRgbLikeOtherWriters) {
   EXPECT_EQ(back.at<cv::Vec3b>(0, 0), cv::Vec3b(255, 0, 0));
 }
 
-TEST(Png, ASubImageIsWrittenWithItsOwnRows) {
-  const cv::Mat big = random_image(40, 60, CV_8UC3, 4);
-  const cv::Mat roi = big(cv::Rect(7, 5, 21, 13));  // rows apart by big's step
-  ASSERT_FALSE(roi.isContinuous());
-  expect_round_trip(roi, "roi.png");
-}
-
-TEST(Png, UnsupportedImagesAndUnwritablePathsAreOutputErrors) {
+TEST(Png, EmptyImagesAndUnwritablePathsAreOutputErrors) {
   const std::string dir = temp_dir();
-  EXPECT_THROW(write_png_file(cv::Mat(), dir + "/empty.png"), OutputError);
-  EXPECT_THROW(write_png_file(cv::Mat(4, 4, CV_16UC1, cv::Scalar(0)), dir + "/deep.png"),
-               OutputError);
-  EXPECT_THROW(write_png_file(cv::Mat(4, 4, CV_8UC2, cv::Scalar(0)), dir + "/two.png"),
-               OutputError);
-  for (const char* f : {"empty.png", "deep.png", "two.png"})
+  EXPECT_THROW(write_png_file(Image(), dir + "/empty.png"), OutputError);
+  EXPECT_THROW(write_png_file(Image(0, 4, 3), dir + "/flat.png"), OutputError);
+  for (const char* f : {"empty.png", "flat.png"})
     EXPECT_FALSE(std::filesystem::exists(dir + "/" + f)) << f;
   try {
-    write_png_file(cv::Mat(4, 4, CV_8UC1, cv::Scalar(0)), dir + "/missing/map.png");
+    write_png_file(Image(4, 4, 1), dir + "/missing/map.png");
     FAIL() << "no error";
   } catch (const OutputError& e) {
     EXPECT_NE(std::string(e.what()).find("missing/map.png"), std::string::npos) << e.what();

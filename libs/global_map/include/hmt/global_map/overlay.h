@@ -4,10 +4,11 @@
 // that it can be seen at map scale.
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <string>
 
 #include "hmt/global_map/global_poses.h"
+#include "hmt/grid/draw.h"
+#include "hmt/grid/image.h"
 #include "hmt/grid/map_export.h"
 #include "hmt/topology/hmt_map.h"
 
@@ -23,35 +24,37 @@ struct OverlayOptions {
   double ellipse_scale = 5.0;
   int origin_radius_px = 3;  // >= 1
   int line_thickness_px = 1;  // >= 1
-  double font_scale = 0.4;  // > 0 (OpenCV Hershey simplex)
+  // > 0: the labels' size as OpenCV's Hershey fonts measure it, digits about
+  // 21 * font_scale pixels tall, drawn with grid::draw_digits at
+  // grid::digit_scale(font_scale) (7 pixels tall up to 0.5).
+  double font_scale = 0.4;
   bool draw_labels = true;
-  // BGR.
-  cv::Scalar arc_colour{200, 120, 0};
-  cv::Scalar ellipse_colour{0, 160, 0};
-  cv::Scalar origin_colour{0, 0, 220};
-  cv::Scalar label_colour{120, 0, 120};
+  grid::Bgr arc_colour{200, 120, 0};
+  grid::Bgr ellipse_colour{0, 160, 0};
+  grid::Bgr origin_colour{0, 0, 220};
+  grid::Bgr label_colour{120, 0, 120};
 };
 
 // Continuous pixel coordinates (column, row) of a map-frame point on the
 // image, integers at pixel centres; row 0 is the top (largest y).
-cv::Point2d pixel_of(const grid::MapImage& base, const Point2D& p);
+grid::Pixel pixel_of(const grid::MapImage& base, const Point2D& p);
 
-// A CV_8UC3 copy of `base` (its grey levels in all three channels) with the
+// A BGR copy of `base` (its grey levels in all three channels) with the
 // arcs of `map` whose two ends are in `poses`, then the ellipses, labels and
 // origins of the areas in `poses`, drawn in that order (so an origin's dot is
 // never covered). The ellipse uses the 2x2 position block of the area's
 // covariance: semi-axes ellipse_scale * sqrt(5.991 lambda_i) along its
 // eigenvectors; the root, known exactly, has none. Throws
-// std::invalid_argument for a base that is not a non-empty CV_8UC1 image
-// with a positive resolution, or for bad options.
-cv::Mat draw_topology_overlay(const grid::MapImage& base,
-                              const topology::HmtMap& map,
-                              const GlobalPoses& poses,
-                              const OverlayOptions& options = {});
+// std::invalid_argument for a base that is not a non-empty grey image with a
+// positive resolution, or for bad options.
+grid::Image draw_topology_overlay(const grid::MapImage& base,
+                                  const topology::HmtMap& map,
+                                  const GlobalPoses& poses,
+                                  const OverlayOptions& options = {});
 
-// Writes an 8-bit grey, BGR or BGRA image as PNG, atomically (complete or
-// absent, see hmt/common/files.h; grid::write_png_file). Throws
-// hmt::OutputError on failure, including an empty image.
-void write_color_png(const cv::Mat& image, const std::string& path);
+// Writes a grey or BGR image as PNG, atomically (complete or absent, see
+// hmt/common/files.h; grid::write_png_file). Throws hmt::OutputError on
+// failure, including an empty image.
+void write_color_png(const grid::Image& image, const std::string& path);
 
 }  // namespace hmt::global_map

@@ -3,15 +3,15 @@
 // (254), occupied black (0); image row 0 is the top (largest y).
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <string>
 
+#include "hmt/grid/image.h"
 #include "hmt/grid/occupancy_grid.h"
 
 namespace hmt::grid {
 
 struct MapImage {
-  cv::Mat image;            // CV_8UC1, map_server grey levels
+  Image image;              // 1 channel, map_server grey levels
   double resolution = 0.0;  // metres per pixel
   double origin_x = 0.0;    // map-frame position of the lower-left pixel corner
   double origin_y = 0.0;

@@ -8,21 +8,21 @@
 #pragma once
 
 #include <cstdint>
-#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 
+#include "hmt/grid/image.h"
+
 namespace hmt::grid {
 
-// The PNG bytes of an 8-bit image with 1 (grey), 3 (BGR, OpenCV's order) or
-// 4 (BGRA) channels; colour is stored as RGB(A), as cv::imencode does, so
-// that any reader gets the same pixels back. Throws hmt::OutputError, naming
-// `path` (the file the bytes are for), for an empty image, another depth or
-// channel count, or an encoder failure.
-std::vector<uint8_t> encode_png(const cv::Mat& image, const std::string& path);
+// The PNG bytes of a grey or BGR image; colour is stored as RGB, as
+// cv::imencode does, so that any reader gets the same pixels back. Throws
+// hmt::OutputError, naming `path` (the file the bytes are for), for an empty
+// image or an encoder failure.
+std::vector<uint8_t> encode_png(const Image& image, const std::string& path);
 
 // encode_png() written atomically to `path` (complete or absent, see
 // hmt/common/files.h). Throws hmt::OutputError on failure.
-void write_png_file(const cv::Mat& image, const std::string& path);
+void write_png_file(const Image& image, const std::string& path);
 
 }  // namespace hmt::grid

@@ -3,17 +3,17 @@
 // 3f), and the groups drawn in colour over a global map (000 Fig. 9, left).
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <vector>
 
 #include "hmt/area/ncut.h"
 #include "hmt/common/pose2d.h"
+#include "hmt/grid/image.h"
 #include "hmt/grid/map_export.h"
 
 namespace hmt::grouping {
 
 // A distinct BGR colour per group (a fixed 12-colour palette, cycled).
-cv::Vec3b group_colour(int group);
+grid::Bgr group_colour(int group);
 
 // W as a grey image, rows and columns in `order` (a permutation of the
 // nodes): pixel brightness = SSO (black 0, white 1), the diagonal white (an
@@ -21,9 +21,9 @@ cv::Vec3b group_colour(int group);
 // max(1, target_px / n) pixels; above 2000 nodes cells are pooled by their
 // maximum so that the side stays at most 2000 pixels. `block_sizes` (in
 // order, summing to n; may be empty) outline diagonal blocks in their
-// group's colour. BGR, CV_8UC3.
-cv::Mat weight_image(const area::WeightMatrix& W, const std::vector<int>& order,
-                     const std::vector<int>& block_sizes, int target_px = 800);
+// group's colour. BGR.
+grid::Image weight_image(const area::WeightMatrix& W, const std::vector<int>& order,
+                         const std::vector<int>& block_sizes, int target_px = 800);
 
 struct MapOverlay {
   // Per keyframe: its pose in the map's frame, its group, and its scan's end
@@ -37,7 +37,7 @@ struct MapOverlay {
 // The rendered map in grey, each keyframe's end points in its group's
 // colour, the route as a thin dark line through the keyframes, each keyframe
 // a dot in its group's colour, and each group's id at the keyframe nearest
-// to the mean of its keyframes' positions. BGR.
-cv::Mat groups_map_image(const grid::MapImage& map, const MapOverlay& overlay);
+// to the mean of its keyframes' positions, outlined in white. BGR.
+grid::Image groups_map_image(const grid::MapImage& map, const MapOverlay& overlay);
 
 }  // namespace hmt::grouping

@@ -1,0 +1,33 @@
+#include "hmt/grid/image.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace hmt::grid {
+
+Image::Image(int width, int height, int channels, uint8_t fill)
+    : width_(width), height_(height), channels_(channels) {
+  if (width < 0 || height < 0)
+    throw std::invalid_argument("Image: negative size " + std::to_string(width) +
+                                " x " + std::to_string(height));
+  if (channels != 1 && channels != 3)
+    throw std::invalid_argument("Image: " + std::to_string(channels) +
+                                " channels (1 or 3 supported)");
+  pixels_.assign(static_cast<size_t>(width) * static_cast<size_t>(height) *
+                     static_cast<size_t>(channels),
+                 fill);
+}
+
+Image grey_to_bgr(const Image& grey) {
+  if (grey.channels() != 1)
+    throw std::invalid_argument("grey_to_bgr: the image is not grey");
+  Image out(grey.width(), grey.height(), 3);
+  for (int y = 0; y < grey.height(); ++y) {
+    const uint8_t* in = grey.row(y);
+    uint8_t* o = out.row(y);
+    for (int x = 0; x < grey.width(); ++x, o += 3) o[0] = o[1] = o[2] = in[x];
+  }
+  return out;
+}
+
+}  // namespace hmt::grid
