@@ -23,12 +23,15 @@ bench_need_tool() {
 # bench_measure TIMEOUT_S TIME_FILE OUTPUT_FILE CMD [ARGS...]
 # Runs CMD under GNU time -v (written to TIME_FILE) with a timeout, stdin from
 # /dev/null (nothing may wait for a key), stdout+stderr to OUTPUT_FILE.
-# Returns CMD's exit status, 124 on timeout (as timeout(1) does).
+# Returns CMD's exit status, 124 on timeout (as timeout(1) does). time runs
+# outside timeout, so a run that is killed still leaves its report (the
+# figures of timeout's process include the command it waited for): the time
+# and memory it had reached, lower bounds of what it needed.
 bench_measure() {
   local t=$1 tf=$2 out=$3
   shift 3
   local rc=0
-  timeout --kill-after=10 "$t" /usr/bin/time -v -o "$tf" "$@" </dev/null >"$out" 2>&1 || rc=$?
+  /usr/bin/time -v -o "$tf" timeout --kill-after=10 "$t" "$@" </dev/null >"$out" 2>&1 || rc=$?
   return "$rc"
 }
 
@@ -36,7 +39,9 @@ bench_measure() {
 # Runs CMD REPEAT times with bench_measure (reports DIR/time.K.txt, output
 # DIR/output.K.txt) and sets BENCH_WALL, BENCH_CPU, BENCH_RSS from the fastest
 # run: the minimum is the figure least disturbed by other work on the machine.
-# On the first failing run sets BENCH_ERR and returns 1.
+# On the first failing run sets BENCH_ERR and returns 1; when that run timed
+# out, BENCH_WALL, BENCH_CPU and BENCH_RSS are what it had reached, prefixed
+# with ">" (lower bounds).
 bench_measure_best() {
   local repeat=$1 t=$2 d=$3 k rc wall
   shift 3
@@ -46,6 +51,12 @@ bench_measure_best() {
     bench_measure "$t" "$d/time.$k.txt" "$d/output.$k.txt" "$@" || rc=$?
     if [[ $rc -ne 0 ]]; then
       BENCH_ERR="$(bench_exit_reason "$rc" "$d/time.$k.txt"), see $d/output.$k.txt"
+      if [[ $rc -eq 124 || $rc -eq 137 ]] && wall=$(bench_wall_s "$d/time.$k.txt") &&
+         BENCH_CPU=$(bench_cpu_s "$d/time.$k.txt") && BENCH_RSS=$(bench_rss_mb "$d/time.$k.txt"); then
+        BENCH_WALL=">$wall" BENCH_CPU=">$BENCH_CPU" BENCH_RSS=">$BENCH_RSS"
+      else
+        BENCH_WALL=- BENCH_CPU=- BENCH_RSS=-
+      fi
       return 1
     fi
     if ! wall=$(bench_wall_s "$d/time.$k.txt"); then
@@ -84,11 +95,14 @@ bench_rss_mb() {
 }
 
 # bench_ratio A B [DIGITS]: A/B, or "-" when either is missing or B is zero.
+# A lower bound A (">x", a run that timed out) gives a lower bound ">x/B".
 bench_ratio() {
   awk -v a="$1" -v b="$2" -v d="${3:-2}" 'BEGIN {
     num = "^[-+]?[0-9]*[.]?[0-9]+([eE][-+]?[0-9]+)?$"  # "-" (no figure) is not a number
+    bound = ""
+    if (substr(a, 1, 1) == ">") { bound = ">"; a = substr(a, 2) }
     if (a !~ num || b !~ num || b + 0 == 0) { print "-"; exit }
-    printf "%.*f\n", d, a / b }'
+    printf "%s%.*f\n", bound, d, a / b }'
 }
 
 # bench_exit_reason RC TIME_FILE: short text for a failed run.

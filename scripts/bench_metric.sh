@@ -21,7 +21,9 @@
 #               rbpf-slam is single-threaded
 #   SEED        random seed for both (ours metric_slam.seed, MRPT RANDOM_SEED) [1]
 #   REPEAT      runs of each program per log; the fastest is reported [1]
-#   TIMEOUT     seconds per run before it is killed and reported FAIL [1800]
+#   TIMEOUT     seconds per run before it is killed and reported FAIL [1800];
+#               a killed MRPT run shows the time and memory it had reached
+#               (">x", lower bounds, and so are its ratios)
 #   OUT_DIR     where metric.md and per-log trajectories go [/tmp/hmt-bench/results]
 #   CACHE_DIR   converted rawlogs [/tmp/hmt-bench/cache]
 #   WORK_DIR    run outputs, logs and time reports [/tmp/hmt-bench/work]
@@ -178,6 +180,8 @@ run_mrpt() {
   bench_log "$name: rbpf-slam ($PARTICLES particles)"
   if ! bench_measure_best "$REPEAT" "$TIMEOUT" "$d" "$RBPF_SLAM" "$d/rbpf-slam.ini"; then
     ERR=$BENCH_ERR
+    # A timed-out run still shows how far it got (lower bounds, ">x").
+    MRPT_WALL=$BENCH_WALL MRPT_CPU=$BENCH_CPU MRPT_RSS=$BENCH_RSS
     return 1
   fi
   MRPT_WALL=$BENCH_WALL MRPT_CPU=$BENCH_CPU MRPT_RSS=$BENCH_RSS
