@@ -141,14 +141,11 @@ hmt::Log read_rawlog(const std::string& path, bool chosen_by_content) {
   MrptGzStream stream(in);
   auto archive = mrpt::serialization::archiveFrom(stream);
   RawlogCollector collector(path);
-  const std::string prefix = "rawlog '" + path + "' ";
   size_t entry = 0;
   for (;; ++entry) {
+    collector.set_entry(entry);
     if (in.at_end()) {
-      const std::string zerr = in.compression_error();
-      if (!zerr.empty())
-        throw InputError(prefix + "is a damaged gzip file (zlib: " + zerr +
-                         ", after " + std::to_string(entry) + " entries)");
+      collector.check_clean_end(in);
       break;
     }
     CSerializable::Ptr obj;
@@ -157,27 +154,9 @@ hmt::Log read_rawlog(const std::string& path, bool chosen_by_content) {
     } catch (const std::exception& e) {
       // MRPT reports a clean end and a cut inside an object alike; at_end()
       // above already handled the clean end, so this is damage.
-      const std::string zerr = in.compression_error();
-      if (!zerr.empty())
-        throw InputError(prefix + "is a damaged gzip file (zlib: " + zerr +
-                         ", found while reading entry " +
-                         std::to_string(entry) + ")");
-      // Input left over: the object itself is wrong, and if it is the
-      // first, the file is most likely not a rawlog at all.
-      const bool cut_short = in.at_end();
-      if (entry == 0 && !cut_short)
-        throw InputError(
-            (chosen_by_content
-                 ? "input log '" + path +
-                       "' is neither a CARMEN log nor an MRPT rawlog"
-                 : prefix + "is not an MRPT rawlog") +
-            " (its first object cannot be read)");
-      const bool bad_alloc = dynamic_cast<const std::bad_alloc*>(&e);
-      throw InputError(prefix + (cut_short ? "is truncated" : "is corrupt") +
-                       ": entry " + std::to_string(entry) +
-                       " cannot be read" + (bad_alloc ? " (absurd size)" : ""));
+      collector.unreadable_entry(in, chosen_by_content,
+                                 dynamic_cast<const std::bad_alloc*>(&e) != nullptr);
     }
-    collector.set_entry(entry);
     add_entry(obj, collector, false);
   }
   return collector.finish(entry);

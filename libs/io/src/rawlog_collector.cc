@@ -19,6 +19,32 @@ bool finite(const Pose2D& p) {
 
 }  // namespace
 
+void RawlogCollector::check_clean_end(const GzInputStream& in) const {
+  const std::string zerr = in.compression_error();
+  if (!zerr.empty())
+    throw InputError(prefix() + "is a damaged gzip file (zlib: " + zerr + ", after " +
+                     std::to_string(entry_) + " entries)");
+}
+
+void RawlogCollector::unreadable_entry(GzInputStream& in, bool chosen_by_content,
+                                       bool absurd_size) const {
+  const std::string zerr = in.compression_error();
+  if (!zerr.empty())
+    throw InputError(prefix() + "is a damaged gzip file (zlib: " + zerr +
+                     ", found while reading entry " + std::to_string(entry_) + ")");
+  // Input left over: the object itself is wrong, and if it is the first,
+  // the file is most likely not a rawlog at all.
+  const bool cut_short = in.at_end();
+  if (entry_ == 0 && !cut_short)
+    throw InputError((chosen_by_content
+                          ? "input log '" + path_ + "' is neither a CARMEN log nor an MRPT rawlog"
+                          : prefix() + "is not an MRPT rawlog") +
+                     " (its first object cannot be read)");
+  throw InputError(prefix() + (cut_short ? "is truncated" : "is corrupt") + ": entry " +
+                   std::to_string(entry_) + " cannot be read" +
+                   (absurd_size ? " (absurd size)" : ""));
+}
+
 void RawlogCollector::not_an_entry(const std::string& class_name) const {
   throw InputError(prefix() + "entry " + std::to_string(entry_) + " is a " +
                    class_name +

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "gz_stream.h"
 #include "hmt/common/sensor_data.h"
 #include "rawlog_records.h"
 
@@ -26,6 +27,17 @@ class RawlogCollector {
   void add_odometry(const Pose2DRecord& pose);
   // A CActionRobotMovement2D: an increment since the previous one.
   void add_move(const MoveRecord& move);
+
+  // The reader found `in` at its end before the next entry: returns if the
+  // end is clean, throws the InputError for a damaged gzip stream.
+  void check_clean_end(const GzInputStream& in) const;
+  // Throws the InputError for the entry being read when it cannot be read
+  // (the clean end was handled by check_clean_end): damaged gzip; not a
+  // rawlog at all (the first entry, input left over; `chosen_by_content`:
+  // the log's type was guessed from its content); truncated; corrupt.
+  // `absurd_size`: the object claimed more memory than could be allocated.
+  [[noreturn]] void unreadable_entry(GzInputStream& in, bool chosen_by_content,
+                                     bool absurd_size = false) const;
 
   // Throws the InputError for a top-level object that is no rawlog entry.
   [[noreturn]] void not_an_entry(const std::string& class_name) const;

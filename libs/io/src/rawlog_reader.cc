@@ -60,14 +60,11 @@ hmt::Log read_rawlog(const std::string& path, bool chosen_by_content) {
   GzInputStream in(path);
   ArchiveReader archive(in);
   RawlogCollector collector(path);
-  const std::string prefix = "rawlog '" + path + "' ";
   size_t entry = 0;
   for (;; ++entry) {
+    collector.set_entry(entry);
     if (in.at_end()) {
-      const std::string zerr = in.compression_error();
-      if (!zerr.empty())
-        throw InputError(prefix + "is a damaged gzip file (zlib: " + zerr +
-                         ", after " + std::to_string(entry) + " entries)");
+      collector.check_clean_end(in);
       break;
     }
     RawObject obj;
@@ -81,25 +78,8 @@ hmt::Log read_rawlog(const std::string& path, bool chosen_by_content) {
           "a " + e.class_name + " (entry " + std::to_string(entry) + ")");
     } catch (const ArchiveError&) {
       // The clean end was handled by at_end() above, so this is damage.
-      const std::string zerr = in.compression_error();
-      if (!zerr.empty())
-        throw InputError(prefix + "is a damaged gzip file (zlib: " + zerr +
-                         ", found while reading entry " +
-                         std::to_string(entry) + ")");
-      // Input left over: the object itself is wrong, and if it is the
-      // first, the file is most likely not a rawlog at all.
-      const bool cut_short = in.at_end();
-      if (entry == 0 && !cut_short)
-        throw InputError(
-            (chosen_by_content
-                 ? "input log '" + path +
-                       "' is neither a CARMEN log nor an MRPT rawlog"
-                 : prefix + "is not an MRPT rawlog") +
-            " (its first object cannot be read)");
-      throw InputError(prefix + (cut_short ? "is truncated" : "is corrupt") +
-                       ": entry " + std::to_string(entry) + " cannot be read");
+      collector.unreadable_entry(in, chosen_by_content);
     }
-    collector.set_entry(entry);
     add_entry(obj, collector, false);
   }
   return collector.finish(entry);
