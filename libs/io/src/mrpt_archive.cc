@@ -27,44 +27,6 @@ void ArchiveReader::skip(uint64_t count) {
   }
 }
 
-uint8_t ArchiveReader::u8() {
-  uint8_t v;
-  read_bytes(&v, 1);
-  return v;
-}
-
-bool ArchiveReader::boolean() { return u8() != 0; }
-
-int32_t ArchiveReader::i32() {
-  int32_t v;
-  read_bytes(&v, 4);
-  return v;
-}
-
-uint32_t ArchiveReader::u32() {
-  uint32_t v;
-  read_bytes(&v, 4);
-  return v;
-}
-
-uint64_t ArchiveReader::u64() {
-  uint64_t v;
-  read_bytes(&v, 8);
-  return v;
-}
-
-float ArchiveReader::f32() {
-  float v;
-  read_bytes(&v, 4);
-  return v;
-}
-
-double ArchiveReader::f64() {
-  double v;
-  read_bytes(&v, 8);
-  return v;
-}
-
 std::string ArchiveReader::string() {
   std::vector<char> chars;
   array(u32(), chars);

@@ -45,13 +45,20 @@ class ArchiveReader {
   void read_bytes(void* out, size_t count);
   void skip(uint64_t count);
 
-  uint8_t u8();
-  bool boolean();  // any non-zero byte is true
-  int32_t i32();
-  uint32_t u32();
-  uint64_t u64();
-  float f32();
-  double f64();
+  // One value, its bytes as stored (little-endian, IEEE-754).
+  template <typename T>
+  T value() {
+    T v;
+    read_bytes(&v, sizeof v);
+    return v;
+  }
+  uint8_t u8() { return value<uint8_t>(); }
+  bool boolean() { return u8() != 0; }  // any non-zero byte is true
+  int32_t i32() { return value<int32_t>(); }
+  uint32_t u32() { return value<uint32_t>(); }
+  uint64_t u64() { return value<uint64_t>(); }
+  float f32() { return value<float>(); }
+  double f64() { return value<double>(); }
   std::string string();  // uint32 length + bytes
 
   // `count` values straight from the stream (MRPT's ReadBufferFixEndianness).
