@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_set>
 
 #include "hmt/common/error.h"
 #include "hmt/common/log_sum_exp.h"
@@ -419,17 +418,13 @@ void HybridFilter::apply_alignment(const AlignmentJob& job,
 }
 
 size_t HybridFilter::map_memory_bytes() const {
-  std::unordered_set<const grid::Tile*> tiles;
+  grid::TileTally tally;
   for (const auto& h : hyps_) {
-    for (const auto& p : h.filter.particles())
-      p.map.for_each_tile([&](const grid::Tile* t) { tiles.insert(t); });
+    for (const auto& p : h.filter.particles()) tally.add(p.map);
     for (AreaId id : h.map.area_ids())
-      if (const auto& m = h.map.area(id).map)
-        m->for_each_tile([&](const grid::Tile* t) { tiles.insert(t); });
+      if (const auto& m = h.map.area(id).map) tally.add(*m);
   }
-  size_t bytes = 0;
-  for (const grid::Tile* t : tiles) bytes += t->bytes();
-  return bytes;
+  return tally.bytes();
 }
 
 topology::Session HybridFilter::session() const {

@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <thread>
-#include <unordered_set>
 
 #include "hmt/common/error.h"
 #include "hmt/common/log_sum_exp.h"
@@ -321,12 +320,9 @@ void GridRbpf::restart(const grid::OccupancyGrid& map, const Pose2D& pose) {
 }
 
 size_t GridRbpf::map_memory_bytes() const {
-  std::unordered_set<const grid::Tile*> tiles;
-  for (const auto& p : particles_)
-    p.map.for_each_tile([&](const grid::Tile* t) { tiles.insert(t); });
-  size_t bytes = 0;
-  for (const grid::Tile* t : tiles) bytes += t->bytes();
-  return bytes;
+  grid::TileTally tally;
+  for (const auto& p : particles_) tally.add(p.map);
+  return tally.bytes();
 }
 
 }  // namespace hmt::metric_slam

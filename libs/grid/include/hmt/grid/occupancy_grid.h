@@ -25,6 +25,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <unordered_set>
 #include <vector>
 
 #include "hmt/common/pose2d.h"
@@ -184,6 +185,22 @@ class OccupancyGrid {
   int tx0_ = 0, ty0_ = 0;  // tile coordinates of tiles_[0]
   int ntx_ = 0, nty_ = 0;  // table size in tiles
   std::vector<std::shared_ptr<Tile>> tiles_;
+};
+
+// The memory of the tiles of several grids that share tiles copy-on-write
+// (particles, archived area maps), each distinct tile counted once.
+class TileTally {
+ public:
+  void add(const OccupancyGrid& g) {
+    g.for_each_tile([&](const Tile* t) {
+      if (seen_.insert(t).second) bytes_ += t->bytes();
+    });
+  }
+  size_t bytes() const { return bytes_; }
+
+ private:
+  std::unordered_set<const Tile*> seen_;
+  size_t bytes_ = 0;
 };
 
 }  // namespace hmt::grid
