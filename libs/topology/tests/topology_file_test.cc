@@ -267,7 +267,8 @@ std::string unwrap(const std::string& file) {
             Z_OK);
   return payload;
 }
-std::string wrap(const std::string& payload) {
+std::string wrap(const std::string& payload, const char (&magic)[8] = kTopologyMagic,
+                 uint32_t version = kTopologyFormatVersion) {
   uLongf n = compressBound(payload.size());
   std::string z(n, '\0');
   EXPECT_EQ(
@@ -275,8 +276,8 @@ std::string wrap(const std::string& payload) {
                reinterpret_cast<const Bytef*>(payload.data()), payload.size()),
       Z_OK);
   z.resize(n);
-  std::string h(kTopologyMagic, 8);
-  put_u32(h, kTopologyFormatVersion);
+  std::string h(magic, 8);
+  put_u32(h, version);
   put_u32(h, 0);
   put_u64(h, payload.size());
   put_u64(h, z.size());
@@ -592,6 +593,29 @@ TEST(SessionFile, BadFilesAreInputErrorsNamingTheProblem) {
   std::string flipped = bytes;
   flipped[bytes.size() / 2] ^= 0x10;
   expect_error(flipped, "corrupt");
+  // An area naming a map the file does not store (checksums valid).
+  std::string p;
+  put_u64(p, 1);    // steps
+  put_f64(p, 2.0);  // time
+  put_u32(p, 0);    // maps stored
+  put_u32(p, 1);    // hypotheses
+  put_u32(p, 0);    // its id
+  for (int i = 0; i < 6; ++i) put_f64(p, 0.0);  // robot, area abstraction frame
+  put_u32(p, 1);                                // areas
+  put_u32(p, 0);                                // id
+  put_u32(p, 0xffffffffu);                      // no parent
+  for (int i = 0; i < 3; ++i) put_f64(p, 0.0);  // origin
+  put_u64(p, 0);                                // created step
+  put_f64(p, 0.0);                              // created time
+  put_u32(p, 0);                                // keyframes
+  put_u32(p, 5);                                // map index: none stored
+  put_u32(p, 0);                                // arcs
+  put_u32(p, 1);                                // paths
+  put_f64(p, 0.0);
+  put_u32(p, 1);
+  put_u32(p, 0);
+  put_u64(p, 0);
+  expect_error(wrap(p, kSessionMagic, kSessionFormatVersion), "map index 5 beyond the 0 maps stored");
   // A hypothesis whose current area has no map cannot be continued.
   Session no_map = s;
   no_map.hypotheses[0].map = f.map;  // area 2 (current) not archived
