@@ -31,6 +31,16 @@
 #   HMT_SLAM    our binary [<repo>/build/apps/hmt-slam]
 #   RBPF_SLAM   [rbpf-slam]
 #   MRPT_INI    [/usr/share/mrpt/config_files/rbpf-slam/gridmapping_optimal_sampling.ini]
+#   MRPT_UPDATES when rbpf-slam runs its filter and inserts scans [matched]:
+#               "matched" sets its localizeLin/AngDistance and
+#               insertionLin/AngDistance to our run's update_distance /
+#               update_angle and map_update_distance / map_update_angle
+#               (read back from our run's config_effective.ini), so both
+#               filters process the same scans, as the paper's Table I
+#               compared the two methods over the same updates; "ini" keeps
+#               MRPT_INI's own (1 m / 40 degrees in the stock file: about a
+#               third of the scans of these logs, which are already thinned
+#               to one scan every 0.3-0.6 m)
 #   CONFIG      our config for every log [config/NAME.ini when the log has
 #               one, else config/default.ini]
 #   TABLE       file name of the table in OUT_DIR [metric.md]
@@ -61,11 +71,13 @@ HMT_SLAM=${HMT_SLAM:-$BENCH_REPO/build/apps/hmt-slam}
 RBPF_SLAM=${RBPF_SLAM:-rbpf-slam}
 MRPT_INI=${MRPT_INI:-/usr/share/mrpt/config_files/rbpf-slam/gridmapping_optimal_sampling.ini}
 CONFIG=${CONFIG:-}
+MRPT_UPDATES=${MRPT_UPDATES:-matched}
 TABLE=${TABLE:-metric.md}
 TITLE=${TITLE:-Metric SLAM: hmt-slam vs MRPT rbpf-slam}
 
 # ---------------------------------------------------------------- checks
 [[ "$MODE" == run || "$MODE" == metric ]] || bench_die "MODE must be 'run' or 'metric', not '$MODE'"
+[[ "$MRPT_UPDATES" == matched || "$MRPT_UPDATES" == ini ]] || bench_die "MRPT_UPDATES must be 'matched' or 'ini', not '$MRPT_UPDATES'"
 [[ "$PARTICLES" =~ ^[1-9][0-9]*$ ]] || bench_die "PARTICLES must be a positive integer, not '$PARTICLES'"
 [[ "$SEED" =~ ^[0-9]+$ ]] || bench_die "SEED must be a non-negative integer, not '$SEED'"
 [[ -z "$THREADS" || "$THREADS" =~ ^[0-9]+$ ]] || bench_die "THREADS must be a non-negative integer, not '$THREADS'"
@@ -166,9 +178,32 @@ mrpt_ini() {
       SAVE_3D_SCENE=0 SAVE_POSE_LOG=0 SAVE_ENOSE_READINGS=0 CAMERA_3DSCENE_FOLLOWS_ROBOT=0 \
       SHOW_PROGRESS_IN_WINDOW=0 SHOW_PROGRESS_IN_WINDOW_DELAY_MS=0 \
       verbosity=WARN verbosity_level=WARN \
-      adaptiveSampleSize=0 "sampleSize=$PARTICLES" "RANDOM_SEED=$SEED"; do
+      adaptiveSampleSize=0 "sampleSize=$PARTICLES" "RANDOM_SEED=$SEED" "${MRPT_MATCHED[@]}"; do
     bench_ini_set "$ini" MappingApplication "${kv%%=*}" "${kv#*=}" || return 1
   done
+}
+
+# matched_updates NAME: MRPT_MATCHED, the ini keys that make rbpf-slam filter
+# and insert on our run's thresholds (empty with MRPT_UPDATES=ini).
+matched_updates() {
+  MRPT_MATCHED=()
+  [[ $MRPT_UPDATES == matched ]] || return 0
+  local eff=$WORK_DIR/$1/ours/out/config_effective.ini k v lin ang ins_lin ins_ang
+  [[ -r $eff ]] || { ERR="no config_effective.ini from our run to match MRPT's updates to"; return 1; }
+  local -A ours=()
+  for k in update_distance update_angle map_update_distance map_update_angle; do
+    v=$(bench_ini_get "$eff" metric_slam "$k") || { ERR="$k not in $eff"; return 1; }
+    ours[$k]=$v
+  done
+  # Angles in degrees; six significant digits are exact enough for both.
+  read -r lin ang ins_lin ins_ang < <(python3 -c 'import math, sys
+u, ua, m, ma = map(float, sys.argv[1:])
+print("%.6g %.6g %.6g %.6g" % (u, math.degrees(ua), m, math.degrees(ma)))' \
+    "${ours[update_distance]}" "${ours[update_angle]}" \
+    "${ours[map_update_distance]}" "${ours[map_update_angle]}") ||
+    { ERR="cannot read our update thresholds from $eff"; return 1; }
+  MRPT_MATCHED=("localizeLinDistance=$lin" "localizeAngDistance_deg=$ang"
+    "insertionLinDistance=$ins_lin" "insertionAngDistance_deg=$ins_ang")
 }
 
 # run_mrpt NAME: sets MRPT_WALL MRPT_CPU MRPT_RSS MRPT_SCANS MRPT_TRAJ MRPT_MEAN_TRAJ.
@@ -176,7 +211,13 @@ run_mrpt() {
   local name=$1
   local d=$WORK_DIR/$name/mrpt
   rm -rf "$d" && mkdir -p "$d/out"
+  matched_updates "$name" || return 1
   mrpt_ini "$d/out" "$d/rbpf-slam.ini" || { ERR="cannot write the ini"; return 1; }
+  local lin ang
+  lin=$(bench_ini_get "$d/rbpf-slam.ini" MappingApplication localizeLinDistance) &&
+    ang=$(bench_ini_get "$d/rbpf-slam.ini" MappingApplication localizeAngDistance_deg) ||
+    { ERR="no localizeLinDistance / localizeAngDistance_deg in the ini"; return 1; }
+  MRPT_UPDATE="$lin m or ${ang}°"
   bench_log "$name: rbpf-slam ($PARTICLES particles)"
   if ! bench_measure_best "$REPEAT" "$TIMEOUT" "$d" "$RBPF_SLAM" "$d/rbpf-slam.ini"; then
     ERR=$BENCH_ERR
@@ -187,7 +228,7 @@ run_mrpt() {
   MRPT_WALL=$BENCH_WALL MRPT_CPU=$BENCH_CPU MRPT_RSS=$BENCH_RSS
   MRPT_TRAJ=$d/trajectory.tum
   MRPT_MEAN_TRAJ=$d/trajectory_mean.tum
-  if ! python3 "$BENCH_REPO/scripts/bench/mrpt_path.py" "$d/out" >"$MRPT_TRAJ" 2>"$d/path.err" ||
+  if ! python3 "$BENCH_REPO/scripts/bench/mrpt_path.py" "$d/out" --localize "$lin" "$ang" >"$MRPT_TRAJ" 2>"$d/path.err" ||
      ! python3 "$BENCH_REPO/scripts/bench/mrpt_path.py" "$d/out" --mean >"$MRPT_MEAN_TRAJ" 2>>"$d/path.err"; then
     ERR="no trajectory: $(tail -n 1 "$d/path.err")"
     return 1
@@ -206,7 +247,7 @@ MACHINE=$(bench_machine)
 LOAD_START=$(bench_load)
 MRPT_VERSION=$(dpkg-query -W -f='${Version}' mrpt-apps 2>/dev/null || echo unknown)
 REV=$(bench_git_rev)
-MRPT_UPDATE="$(bench_ini_get "$MRPT_INI" MappingApplication localizeLinDistance || echo '?') m or $(bench_ini_get "$MRPT_INI" MappingApplication localizeAngDistance_deg || echo '?')°"
+MRPT_UPDATE="?"  # set by run_mrpt from the ini it writes
 if [[ -n $THREADS ]]; then OURS_THREADS=$THREADS; else OURS_THREADS="config default"; fi
 
 ROWS=()
@@ -258,7 +299,11 @@ report() {
   echo "- load average (1/5/15 min) at start: $LOAD_START, at end: $LOAD_END (other work on the machine inflates the times)"
   echo "- particles: $PARTICLES (both); seed $SEED; our threads: $OURS_THREADS (rbpf-slam: 1)"
   echo "- ours: \`hmt-slam $MODE\` with the config in the table (config/), commit $REV"
-  echo "- MRPT: rbpf-slam $MRPT_VERSION with $(basename "$MRPT_INI") (files, windows and logging off, otherwise unchanged)"
+  if [[ $MRPT_UPDATES == matched ]]; then
+    echo "- MRPT: rbpf-slam $MRPT_VERSION with $(basename "$MRPT_INI") (files, windows and logging off), its filter and map updates set to ours (MRPT_UPDATES=matched: runs the filter after $MRPT_UPDATE of odometry, as ours does), otherwise unchanged"
+  else
+    echo "- MRPT: rbpf-slam $MRPT_VERSION with $(basename "$MRPT_INI") (files, windows and logging off, otherwise unchanged: MRPT_UPDATES=ini)"
+  fi
   echo "- both read the same rawlog (CARMEN logs converted once by \`hmt-slam convert --format sf\`)"
   echo "- wall time, CPU time (user + system, all threads) and peak RSS from GNU \`time -v\` of the whole process (reading the log and writing the map included); fastest of $REPEAT run(s) each"
   echo

@@ -2,7 +2,8 @@
 # Table I of paper 002 reproduced: HMT-SLAM (`hmt-slam run`, each log with
 # its config/NAME.ini, or config/default.ini) against MRPT's global RBPF
 # (`rbpf-slam`, gridmapping_optimal_sampling.ini, logging off, the same
-# particle count for its one filter as ours per hypothesis) on the classic
+# particle count for its one filter as ours per hypothesis, and by default
+# its filter and map updates on our thresholds: MRPT_UPDATES) on the classic
 # logs, in one go. Prints wall time, CPU time, peak memory, their ratios
 # MRPT/ours, and the Intel relation error of both. The paper's targets: at
 # least 4x faster and 5x less peak memory, with equal or better error.
