@@ -15,8 +15,6 @@ namespace {
 using topology::AreaId;
 using topology::PoseGaussian;
 
-
-
 // Weighted covariance of poses around `mean` (angles unwrapped next to it).
 Eigen::Matrix3d spread(const std::vector<Pose2D>& poses, const std::vector<double>& w,
                        const Pose2D& mean) {
@@ -442,6 +440,7 @@ topology::Session HybridFilter::session() const {
     sh.topo.log_weight = std::log(p[i]);
     sh.robot = h.filter.best().path.back();
     sh.aam_from_area = h.aam_from_area;
+    sh.pending_closures = h.pending_closures;
     s.hypotheses.push_back(std::move(sh));
   }
   return s;
@@ -463,6 +462,9 @@ void HybridFilter::resume(const topology::Session& s) {
     // The particles' paths start at the saved run's last step.
     h.area_start_step = s.steps - 1;
     h.aam_from_area = sh.aam_from_area;
+    // Closures TSBI made before the save are fine-aligned when this
+    // hypothesis is accepted, as in an uninterrupted run.
+    h.pending_closures = sh.pending_closures;
     h.filter.restart(*h.map.area(h.current_area()).map, sh.robot);
     next_hypothesis_id_ = std::max(next_hypothesis_id_, h.id + 1);
     hyps_.push_back(std::move(h));

@@ -61,6 +61,43 @@ TEST(HybridFilter, HypothesesShareTheParticleBudgetWhenAsked) {
   EXPECT_EQ(g.hypotheses()[1].filter.particles().size(), 10u);
 }
 
+TEST(HybridFilter, ResumedRunStillAlignsTheClosuresMadeBeforeTheSave) {
+  // A saved run whose hypothesis holds a loop closure TLCA has not yet
+  // accepted: after the file round trip and resume, acceptance hands it to
+  // fine alignment as the uninterrupted run would have.
+  const auto run = testing_ring::ring_run(7);
+  HybridFilter first(ring_options());
+  for (size_t i = 0; i < 60; ++i) first.process(run.log.steps[i]);
+  topology::Session s = first.session();
+  ASSERT_EQ(s.hypotheses.size(), 1u);
+  topology::SessionHypothesis& h = s.hypotheses[0];
+  const std::vector<topology::AreaId> areas = h.map.area_ids();
+  ASSERT_GE(areas.size(), 2u);
+  topology::ClosureRecord c;
+  c.from = h.topo.current_area();
+  c.to = areas.front() == c.from ? areas.back() : areas.front();
+  c.step = s.steps - 5;
+  c.measurement = topology::PoseGaussian(Pose2D(1.0, -2.0, 0.5),
+                                         Eigen::Matrix3d::Identity() * 0.01);
+  h.pending_closures = {c};
+  const topology::Session loaded =
+      topology::decode_session(topology::encode_session(s), "saved.bin");
+  HybridFilter f(ring_options());
+  f.resume(loaded);
+  ASSERT_EQ(f.hypotheses().size(), 1u);
+  ASSERT_EQ(f.hypotheses()[0].pending_closures.size(), 1u);
+  // Saved again, the closure is still there.
+  ASSERT_EQ(f.session().hypotheses[0].pending_closures.size(), 1u);
+  const std::optional<AlignmentJob> job = f.accept_if_dominant();
+  ASSERT_TRUE(job.has_value());
+  ASSERT_EQ(job->closures.size(), 1u);
+  EXPECT_EQ(job->closures[0].from, c.from);
+  EXPECT_EQ(job->closures[0].to, c.to);
+  EXPECT_EQ(job->closures[0].step, c.step);
+  EXPECT_EQ(job->closures[0].measurement.mean.x, 1.0);
+  EXPECT_TRUE(f.hypotheses()[0].pending_closures.empty());
+}
+
 TEST(HybridFilter, Deterministic) {
   // Half the ring: a few new-area events.
   const auto run = testing_sim::simulate({{2, 2, 0}, {28, 2, 0}, {28, 20, 0}}, 0.3, 9, 0.03,

@@ -5,19 +5,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <thread>
 
 #include "hmt/common/error.h"
 #include "hmt/common/log_sum_exp.h"
 #include "hmt/grid/scan_insertion.h"
 
 namespace hmt::metric_slam {
-namespace {
-
-
-
-
-}  // namespace
 
 GridRbpf::GridRbpf(const RbpfOptions& opt)
     : GridRbpf(opt, std::make_shared<WorkerPool>(WorkerPool::threads_for(opt.threads))) {}

@@ -172,16 +172,21 @@ Pose2D ScanMatcher::hill_climb(const grid::OccupancyGrid& map, const Pose2D& sta
 
 int ScanMatcher::normal_equations(const grid::OccupancyGrid& map,
                                   const ScanPoints& scan, const Pose2D& pose,
-                                  Eigen::Matrix3d* H, Eigen::Vector3d* g) const {
+                                  Eigen::Matrix3d* H, Eigen::Vector3d* g,
+                                  MatchScore* score_out) const {
   // Point-to-point residuals r_i = T(pose) p_i - m_i against each beam's
-  // nearest hit mean; J_i = [I | dR/dtheta p_i].
+  // nearest hit mean; J_i = [I | dR/dtheta p_i]. The same pass sums the
+  // score at `pose` exactly as score() does (same beams, same order), so
+  // Gauss-Newton needs one pass per pose instead of two.
   H->setZero();
   g->setZero();
   int n = 0;
   const double c = std::cos(pose.theta), s = std::sin(pose.theta);
-  double hxt = 0, hyt = 0, htt = 0, gx = 0, gy = 0, gt = 0;
+  const double res = map.resolution();
+  const double max_d2 = (opt_.window + 0.5) * (opt_.window + 0.5) * res * res;
+  double hxt = 0, hyt = 0, htt = 0, gx = 0, gy = 0, gt = 0, sum_d2 = 0;
   for_each_match(map, pose, scan, opt_.window,
-                 [&](size_t i, double hx, double hy, double, const Point2D& m) {
+                 [&](size_t i, double hx, double hy, double d2, const Point2D& m) {
                    const Point2D& p = scan.hit[i];
                    const double jx = -s * p.x - c * p.y, jy = c * p.x - s * p.y;
                    const double rx = hx - m.x, ry = hy - m.y;
@@ -191,10 +196,16 @@ int ScanMatcher::normal_equations(const grid::OccupancyGrid& map,
                    gx += rx;
                    gy += ry;
                    gt += jx * rx + jy * ry;
+                   sum_d2 += std::min(d2, max_d2);
                    ++n;
                  });
   *H << n, 0, hxt, 0, n, hyt, hxt, hyt, htt;
   *g << gx, gy, gt;
+  if (score_out) {
+    score_out->matched = n;
+    score_out->log_likelihood =
+        -(sum_d2 + (static_cast<double>(scan.hit.size()) - n) * max_d2) * inv_2sigma2_;
+  }
   return n;
 }
 
@@ -203,16 +214,14 @@ Eigen::Matrix3d ScanMatcher::information(const grid::OccupancyGrid& map,
                                          int* matched) const {
   Eigen::Matrix3d H;
   Eigen::Vector3d g;
-  const int n = normal_equations(map, scan, pose, &H, &g);
+  const int n = normal_equations(map, scan, pose, &H, &g, nullptr);
   if (matched) *matched = n;
   return H * (2.0 * inv_2sigma2_);
 }
 
-bool ScanMatcher::gauss_newton_step(const grid::OccupancyGrid& map,
-                                    const ScanPoints& scan, Pose2D* pose) const {
-  Eigen::Matrix3d H;
-  Eigen::Vector3d g;
-  if (normal_equations(map, scan, *pose, &H, &g) < 6) return false;
+bool ScanMatcher::gauss_newton_step(const Eigen::Matrix3d& H, const Eigen::Vector3d& g,
+                                    int matched, Pose2D* pose) {
+  if (matched < 6) return false;
   const Eigen::LDLT<Eigen::Matrix3d> ldlt(H);
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive() ||
       ldlt.vectorD().minCoeff() <= 1e-9 * H.trace())
@@ -223,21 +232,32 @@ bool ScanMatcher::gauss_newton_step(const grid::OccupancyGrid& map,
 }
 
 Pose2D ScanMatcher::optimize(const grid::OccupancyGrid& map, const Pose2D& start,
-                             const ScanPoints& scan, MatchScore* best_out) const {
+                             const ScanPoints& scan, MatchScore* best_out,
+                             Eigen::Matrix3d* information_out) const {
   // Coarse: an evenly spread subset of the beams.
   const ScanPoints coarse = spread_subset(scan, opt_.coarse_beams);
   Pose2D best = hill_climb(map, start, coarse, opt_.coarse_window);
-  MatchScore best_score = score(map, best, scan);
   // Fine: Gauss-Newton on all beams, kept only while the likelihood rises.
+  Eigen::Matrix3d H;
+  Eigen::Vector3d g;
+  MatchScore best_score;
+  int matched = normal_equations(map, scan, best, &H, &g, &best_score);
   for (int it = 0; it < opt_.gauss_newton_iterations; ++it) {
     Pose2D cand = best;
-    if (!gauss_newton_step(map, scan, &cand)) break;
-    const MatchScore sc = score(map, cand, scan);
+    if (!gauss_newton_step(H, g, matched, &cand)) break;
+    Eigen::Matrix3d cand_H;
+    Eigen::Vector3d cand_g;
+    MatchScore sc;
+    const int cand_matched = normal_equations(map, scan, cand, &cand_H, &cand_g, &sc);
     if (sc.log_likelihood <= best_score.log_likelihood) break;
     best = cand;
     best_score = sc;
+    H = cand_H;
+    g = cand_g;
+    matched = cand_matched;
   }
   if (best_out) *best_out = best_score;
+  if (information_out) *information_out = H * (2.0 * inv_2sigma2_);  // information() at best
   return best;
 }
 

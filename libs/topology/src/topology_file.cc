@@ -201,6 +201,19 @@ constexpr uint32_t kNoGrid = 0xffffffffu;
 // The topology payload of the layout in topology_file.h. With `grids`, each
 // area's map is written as its u32 index in the table (kNoGrid: none)
 // instead of the has_map byte and the grid.
+void write_gaussian(Writer& w, const PoseGaussian& g) {
+  w.pose(g.mean);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) w.f64(g.cov(r, c));
+}
+
+void write_arc(Writer& w, const Arc& arc) {
+  w.u32(arc.from);
+  w.u32(arc.to);
+  write_gaussian(w, arc.pose);
+  w.u32(arc.measurements);
+}
+
 void encode_payload(Writer& w, const HmtMap& map,
                     const std::vector<TopologicalHypothesis>& hypotheses,
                     const GridTable* grids = nullptr) {
@@ -230,15 +243,7 @@ void encode_payload(Writer& w, const HmtMap& map,
     }
   }
   w.count(map.arcs().size(), "arcs");
-  for (const auto& kv : map.arcs()) {
-    const Arc& arc = kv.second;
-    w.u32(arc.from);
-    w.u32(arc.to);
-    w.pose(arc.pose.mean);
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) w.f64(arc.pose.cov(r, c));
-    w.u32(arc.measurements);
-  }
+  for (const auto& kv : map.arcs()) write_arc(w, kv.second);
   w.count(hypotheses.size(), "hypotheses");
   for (const TopologicalHypothesis& h : hypotheses) {
     validate(h, &map);
@@ -397,6 +402,33 @@ LaserScan read_scan(Reader& r) {
 
 // Reads a payload written by encode_payload (with the same grid table, if
 // any) from r's position; the caller checks what follows.
+PoseGaussian read_gaussian(Reader& r, const char* what) {
+  PoseGaussian g;
+  g.mean = r.pose(what);
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col) g.cov(row, col) = r.f64(what);
+  return g;
+}
+
+// An arc, checked on its own (whether its areas exist is the caller's
+// check); `where` prefixes the error messages.
+Arc read_arc(Reader& r, const std::string& where) {
+  Arc arc;
+  arc.from = r.u32("arc");
+  arc.to = r.u32("arc");
+  arc.pose = read_gaussian(r, "arc");
+  arc.measurements = r.u32("arc");
+  const std::string name =
+      where + "arc " + std::to_string(arc.from) + "-" + std::to_string(arc.to);
+  if (arc.from >= arc.to) r.fail(name + ": areas not in ascending order");
+  if (!finite(arc.pose.mean) || std::abs(arc.pose.mean.theta) > M_PI)
+    r.fail(name + ": mean is not a finite pose with its angle in [-pi, pi]");
+  if (!is_positive_definite(arc.pose.cov))
+    r.fail(name + ": covariance is not symmetric positive definite");
+  if (arc.measurements < 1) r.fail(name + ": no measurements");
+  return arc;
+}
+
 TopologySnapshot decode_payload(
     Reader& r,
     const std::vector<std::shared_ptr<const grid::OccupancyGrid>>* grids = nullptr) {
@@ -483,27 +515,14 @@ TopologySnapshot decode_payload(
   const size_t arcs = r.count(8 + 24 + 72 + 4, "arcs");
   std::pair<AreaId, AreaId> last{0, 0};
   for (size_t i = 0; i < arcs; ++i) {
-    Arc arc;
-    arc.from = r.u32("arc");
-    arc.to = r.u32("arc");
-    arc.pose.mean = r.pose("arc mean");
-    for (int row = 0; row < 3; ++row)
-      for (int col = 0; col < 3; ++col)
-        arc.pose.cov(row, col) = r.f64("arc covariance");
-    arc.measurements = r.u32("arc");
+    const Arc arc = read_arc(r, "");
     const std::string name =
         "arc " + std::to_string(arc.from) + "-" + std::to_string(arc.to);
-    if (arc.from >= arc.to) r.fail(name + ": areas not in ascending order");
     if (i > 0 && std::make_pair(arc.from, arc.to) <= last)
       r.fail(name + ": arcs not strictly ascending");
     last = {arc.from, arc.to};
     if (!map.has_area(arc.from) || !map.has_area(arc.to))
       r.fail(name + ": joins an area that does not exist");
-    if (!finite(arc.pose.mean) || std::abs(arc.pose.mean.theta) > M_PI)
-      r.fail(name + ": mean is not a finite pose with its angle in [-pi, pi]");
-    if (!is_positive_definite(arc.pose.cov))
-      r.fail(name + ": covariance is not symmetric positive definite");
-    if (arc.measurements < 1) r.fail(name + ": no measurements");
     map.set_arc(arc);
   }
 
@@ -562,8 +581,11 @@ std::string wrap(const char (&magic)[8], uint32_t version, Deflater& payload) {
 
 // The payload of a file written by wrap(), after every check; `name` and
 // `kind` say what the file is in error messages.
-std::string unwrap(const std::string& bytes, const char (&magic)[8], uint32_t expected_version,
-                   const std::string& name, const char* kind) {
+// Versions from oldest_version to version are read; *read_version (if
+// given) gets the file's.
+std::string unwrap(const std::string& bytes, const char (&magic)[8], uint32_t version,
+                   const std::string& name, const char* kind, uint32_t oldest_version = 0,
+                   uint32_t* read_version = nullptr) {
   if (bytes.empty()) throw InputError(name + " is empty");
   const size_t m = std::min(bytes.size(), sizeof magic);
   if (std::memcmp(bytes.data(), magic, m) != 0)
@@ -572,11 +594,15 @@ std::string unwrap(const std::string& bytes, const char (&magic)[8], uint32_t ex
     throw InputError(name + " is truncated: " + std::to_string(bytes.size()) +
                      " bytes, shorter than its " +
                      std::to_string(kTopologyHeaderSize) + "-byte header");
-  const uint32_t version = get_u32(bytes, 8);
-  if (version != expected_version)
-    throw InputError(name + " has format version " + std::to_string(version) +
+  const uint32_t found = get_u32(bytes, 8);
+  if (oldest_version == 0) oldest_version = version;
+  if (found < oldest_version || found > version)
+    throw InputError(name + " has format version " + std::to_string(found) +
                      "; this build reads version " +
-                     std::to_string(expected_version));
+                     (oldest_version == version
+                          ? std::to_string(version)
+                          : std::to_string(oldest_version) + " to " + std::to_string(version)));
+  if (read_version) *read_version = found;
   if (crc_of(bytes.data(), 36) != get_u32(bytes, 36))
     throw InputError(name + " is corrupt: header checksum mismatch");
   if (get_u32(bytes, 12) != 0)
@@ -657,6 +683,40 @@ TopologySnapshot load_topology(const std::string& path) {
 
 // ------------------------------------------------------------------ session
 
+namespace {
+
+// A hypothesis's closures not yet accepted, each checked against its map.
+std::vector<ClosureRecord> read_closures(Reader& r, const SessionHypothesis& h) {
+  const std::string who = "hypothesis " + std::to_string(h.id) + ", closure ";
+  std::vector<ClosureRecord> out(r.count(8 + 8 + 96 + 1, "pending closures"));
+  for (size_t k = 0; k < out.size(); ++k) {
+    ClosureRecord& c = out[k];
+    const std::string name = who + std::to_string(k);
+    c.from = r.u32("closure");
+    c.to = r.u32("closure");
+    c.step = r.u64("closure");
+    c.measurement = read_gaussian(r, "closure measurement");
+    if (c.from == c.to || !h.map.has_area(c.from) || !h.map.has_area(c.to))
+      r.fail(name + ": " + std::to_string(c.from) + "-" + std::to_string(c.to) +
+             " are not two areas of its map");
+    if (!finite(c.measurement.mean) || std::abs(c.measurement.mean.theta) > M_PI)
+      r.fail(name + ": measurement is not a finite pose with its angle in [-pi, pi]");
+    if (!is_positive_definite(c.measurement.cov))
+      r.fail(name + ": measurement covariance is not symmetric positive definite");
+    const uint8_t has_arc = r.u8("closure");
+    if (has_arc > 1) r.fail(name + ": bad arc flag");
+    if (has_arc) {
+      c.arc_before = read_arc(r, name + ": ");
+      if (c.arc_before->from != std::min(c.from, c.to) ||
+          c.arc_before->to != std::max(c.from, c.to))
+        r.fail(name + ": its arc before joins other areas");
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string encode_session(const Session& session) {
   // Every distinct area map once (hypotheses share the maps of the areas
   // they left before branching), in first-use order.
@@ -679,6 +739,15 @@ std::string encode_session(const Session& session) {
     w.pose(h.robot);
     w.pose(h.aam_from_area);
     encode_payload(w, h.map, {h.topo}, &table);
+    w.count(h.pending_closures.size(), "pending closures");
+    for (const ClosureRecord& c : h.pending_closures) {
+      w.u32(c.from);
+      w.u32(c.to);
+      w.u64(c.step);
+      write_gaussian(w, c.measurement);
+      w.u8(c.arc_before ? 1 : 0);
+      if (c.arc_before) write_arc(w, *c.arc_before);
+    }
     w.spill();
   }
   w.flush();
@@ -686,8 +755,10 @@ std::string encode_session(const Session& session) {
 }
 
 Session decode_session(const std::string& bytes, const std::string& origin) {
-  const std::string payload = unwrap(bytes, kSessionMagic, kSessionFormatVersion,
-                                     "HMT map file '" + origin + "'", "an HMT map file");
+  uint32_t version = 0;
+  const std::string payload =
+      unwrap(bytes, kSessionMagic, kSessionFormatVersion, "HMT map file '" + origin + "'",
+             "an HMT map file", kOldestSessionFormatVersion, &version);
   Reader r(payload, origin);
   Session s;
   s.steps = r.u64("steps");
@@ -710,6 +781,7 @@ Session decode_session(const std::string& bytes, const std::string& origin) {
     h.topo = std::move(t.hypotheses[0]);
     if (!h.map.area(h.topo.current_area()).map)
       r.fail("hypothesis " + std::to_string(h.id) + ": its current area has no map");
+    if (version >= 3) h.pending_closures = read_closures(r, h);
     s.hypotheses.push_back(std::move(h));
   }
   if (!r.at_end()) r.fail("unexpected data after the hypotheses");

@@ -521,6 +521,19 @@ Session sample_session() {
   b.topo = f.hypotheses[1];
   b.topo.log_weight = -3.0;
   b.robot = Pose2D(-2.0, 0.5, 3.0);
+  // Closures TSBI made and TLCA has not accepted: one between areas an arc
+  // already joined, one between areas that were not adjacent.
+  ClosureRecord c1;
+  c1.from = 2;
+  c1.to = 0;
+  c1.step = 280;
+  c1.measurement = PoseGaussian(Pose2D(-1.5, 2.25, 0.4), correlated(5));
+  ClosureRecord c2 = c1;
+  c2.from = 1;
+  c2.to = 0;
+  c2.step = 290;
+  c2.arc_before = *f.map.find_arc(0, 1);
+  b.pending_closures = {c1, c2};
   s.hypotheses = {a, b};
   return s;
 }
@@ -546,7 +559,25 @@ TEST(SessionFile, RoundTripRestoresEveryHypothesisExactly) {
     EXPECT_EQ(g.map.area_ids(), w.map.area_ids());
     EXPECT_EQ(g.map.arcs().size(), w.map.arcs().size());
     EXPECT_EQ(g.map.area(0).map->logodds({0, 0}), w.map.area(0).map->logodds({0, 0}));
+    ASSERT_EQ(g.pending_closures.size(), w.pending_closures.size());
+    for (size_t k = 0; k < w.pending_closures.size(); ++k) {
+      const ClosureRecord &gc = g.pending_closures[k], &wc = w.pending_closures[k];
+      EXPECT_EQ(gc.from, wc.from);
+      EXPECT_EQ(gc.to, wc.to);
+      EXPECT_EQ(gc.step, wc.step);
+      expect_same_pose(gc.measurement.mean, wc.measurement.mean);
+      EXPECT_EQ(gc.measurement.cov, wc.measurement.cov);
+      ASSERT_EQ(gc.arc_before.has_value(), wc.arc_before.has_value());
+      if (wc.arc_before) {
+        EXPECT_EQ(gc.arc_before->from, wc.arc_before->from);
+        EXPECT_EQ(gc.arc_before->to, wc.arc_before->to);
+        expect_same_pose(gc.arc_before->pose.mean, wc.arc_before->pose.mean);
+        EXPECT_EQ(gc.arc_before->pose.cov, wc.arc_before->pose.cov);
+        EXPECT_EQ(gc.arc_before->measurements, wc.arc_before->measurements);
+      }
+    }
   }
+  EXPECT_EQ(got.hypotheses[1].pending_closures.size(), 2u);
   EXPECT_EQ(encode_session(got), read_bytes(path));
 }
 
@@ -620,6 +651,105 @@ TEST(SessionFile, BadFilesAreInputErrorsNamingTheProblem) {
   Session no_map = s;
   no_map.hypotheses[0].map = f.map;  // area 2 (current) not archived
   expect_error(encode_session(no_map), "current area has no map");
+}
+
+// The smallest valid session payload with one hypothesis in area 0, which
+// has map 0 (an empty grid), up to and including its path; version 3 adds
+// the closures after it.
+std::string minimal_session_payload() {
+  std::string p;
+  put_u64(p, 1);    // steps
+  put_f64(p, 2.0);  // time
+  put_u32(p, 1);    // maps stored
+  put_f64(p, 0.05); //   resolution
+  put_u32(p, 0);    //   tiles
+  put_u32(p, 1);    // hypotheses
+  put_u32(p, 0);    // its id
+  for (int i = 0; i < 6; ++i) put_f64(p, 0.0);  // robot, area abstraction frame
+  put_u32(p, 2);                                // areas 0 and 1
+  for (uint32_t id : {0u, 1u}) {
+    put_u32(p, id);
+    put_u32(p, id == 0 ? 0xffffffffu : 0u);       // parent
+    for (int i = 0; i < 3; ++i) put_f64(p, 0.0);  // origin
+    put_u64(p, 0);                                // created step
+    put_f64(p, 0.0);                              // created time
+    put_u32(p, 0);                                // keyframes
+    put_u32(p, 0);                                // map index
+  }
+  put_u32(p, 0);  // arcs
+  put_u32(p, 1);  // paths
+  put_f64(p, 0.0);
+  put_u32(p, 1);
+  put_u32(p, 0);
+  put_u64(p, 0);
+  return p;
+}
+
+TEST(SessionFile, ReadsVersionTwoFilesWithoutClosures) {
+  const std::string p = minimal_session_payload();
+  const Session v2 = decode_session(wrap(p, kSessionMagic, 2), "v2.bin");
+  ASSERT_EQ(v2.hypotheses.size(), 1u);
+  EXPECT_TRUE(v2.hypotheses[0].pending_closures.empty());
+  // The same payload is short of its closure count in version 3...
+  try {
+    decode_session(wrap(p, kSessionMagic, 3), "v3.bin");
+    ADD_FAILURE() << "a version 3 file without its closure count was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("payload ends inside pending closures"),
+              std::string::npos)
+        << e.what();
+  }
+  // ... and a version this build does not know is refused, naming both.
+  try {
+    decode_session(wrap(p + std::string(4, '\0'), kSessionMagic, 4), "v4.bin");
+    ADD_FAILURE() << "a version 4 file was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("format version 4; this build reads version 2 to 3"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(SessionFile, BadPendingClosuresAreInputErrorsNamingThem) {
+  auto with_closure = [](uint32_t from, uint32_t to, double cov_diag, uint8_t has_arc,
+                         uint32_t arc_from, uint32_t arc_to) {
+    std::string p = minimal_session_payload();
+    put_u32(p, 1);  // one closure
+    put_u32(p, from);
+    put_u32(p, to);
+    put_u64(p, 1);
+    for (int i = 0; i < 3; ++i) put_f64(p, 0.0);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) put_f64(p, r == c ? cov_diag : 0.0);
+    p.push_back(static_cast<char>(has_arc));
+    if (has_arc == 1) {
+      put_u32(p, arc_from);
+      put_u32(p, arc_to);
+      for (int i = 0; i < 3; ++i) put_f64(p, 0.0);
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) put_f64(p, r == c ? 0.01 : 0.0);
+      put_u32(p, 1);
+    }
+    return wrap(p, kSessionMagic, kSessionFormatVersion);
+  };
+  const Session ok = decode_session(with_closure(1, 0, 0.01, 1, 0, 1), "ok.bin");
+  ASSERT_EQ(ok.hypotheses[0].pending_closures.size(), 1u);
+  EXPECT_TRUE(ok.hypotheses[0].pending_closures[0].arc_before.has_value());
+  auto expect_error = [](const std::string& b, const std::string& needle) {
+    try {
+      decode_session(b, "x.bin");
+      ADD_FAILURE() << "no error for " << needle;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  expect_error(with_closure(1, 9, 0.01, 0, 0, 0),
+               "hypothesis 0, closure 0: 1-9 are not two areas of its map");
+  expect_error(with_closure(1, 1, 0.01, 0, 0, 0), "1-1 are not two areas of its map");
+  expect_error(with_closure(1, 0, -1.0, 0, 0, 0), "measurement covariance is not");
+  expect_error(with_closure(1, 0, 0.01, 2, 0, 0), "bad arc flag");
+  expect_error(with_closure(1, 0, 0.01, 1, 1, 0), "closure 0: arc 1-0: areas not in ascending order");
+  expect_error(with_closure(1, 0, 0.01, 1, 0, 7), "its arc before joins other areas");
 }
 
 }  // namespace

@@ -16,7 +16,6 @@ namespace {
 using topology::AreaId;
 using topology::PoseGaussian;
 
-
 // The match starts: the prior mean and the lattice {-k, 0, k}^3 along the
 // prior's principal axes (whitened by its Cholesky factor).
 std::vector<Pose2D> match_starts(const PoseGaussian& prior, double k) {
@@ -232,7 +231,8 @@ ExpectedLikelihood TransitionModel::expected_likelihood(
   }
   for (const Pose2D& start : starts) {
     metric_slam::MatchScore ms;
-    const Pose2D x = matcher_.optimize(map, start, obs, &ms);
+    Eigen::Matrix3d info;
+    const Pose2D x = matcher_.optimize(map, start, obs, &ms, &info);
     const double ratio = static_cast<double>(ms.matched) / static_cast<double>(n);
     if (ratio < opt_.min_match_ratio) continue;
     const Eigen::Vector3d e = topology::difference(x, prior.mean);
@@ -244,7 +244,7 @@ ExpectedLikelihood TransitionModel::expected_likelihood(
     });
     if (seen) continue;
     // Laplace around the mode; H is the tempered Gauss-Newton information.
-    const Eigen::Matrix3d H = matcher_.information(map, x, obs) * k;
+    const Eigen::Matrix3d H = info * k;
     const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
     const double log_det = std::log((I + H * S).determinant());
     const double quad = e.dot(H * (I + S * H).inverse() * e);

@@ -1,24 +1,16 @@
-// A 2D pose with a Gaussian uncertainty, and the first-order propagation the
-// SSO needs: the relative pose between two keyframes (000 Eq. 15) and the
-// composition of a pose with a point (the Jacobian J of 000 Eq. 16).
+// The first-order propagation of Gaussian poses the SSO needs: the relative
+// pose between two keyframes (000 Eq. 15) and the composition of a pose
+// with a point (the Jacobian J of 000 Eq. 16).
 #pragma once
 
 #include <Eigen/Core>
 
 #include "hmt/common/pose2d.h"
+#include "hmt/common/pose_gaussian.h"
 
 namespace hmt::area {
 
-struct PoseGaussian {
-  Pose2D mean;
-  // Covariance of (x, y, theta). Zero means "exactly known".
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-
-  PoseGaussian() = default;
-  explicit PoseGaussian(const Pose2D& m,
-                        const Eigen::Matrix3d& c = Eigen::Matrix3d::Zero())
-      : mean(m), cov(c) {}
-};
+using PoseGaussian = hmt::PoseGaussian;  // hmt/common/pose_gaussian.h
 
 // `of` seen from the frame of `from` (of - from), with covariance propagated
 // to first order assuming the two poses are independent.

@@ -154,7 +154,8 @@ class HybridFilter {
   // particles restart at its saved robot pose in its current area's map;
   // steps are numbered on from the saved run's; the area abstraction starts
   // a fresh keyframe graph; closures not yet accepted when the run was
-  // saved stay in the arcs as TSBI measured them.
+  // saved are fine-aligned when their hypothesis is accepted, as they would
+  // have been without the stop.
   void resume(const topology::Session& session);
 
   const std::vector<Hypothesis>& hypotheses() const { return hyps_; }

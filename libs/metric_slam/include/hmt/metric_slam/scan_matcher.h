@@ -53,8 +53,11 @@ class ScanMatcher {
   // Hill climbing from `start` (GMapping-style: try +-x, +-y, +-theta, take
   // the best, halve the steps when nothing improves) on a subset of beams,
   // then Gauss-Newton on all beams against the matched cells' hit means.
+  // `information` (if given) gets information() at the result, which the
+  // last Gauss-Newton pass has already summed.
   Pose2D optimize(const grid::OccupancyGrid& map, const Pose2D& start,
-                  const ScanPoints& scan, MatchScore* best) const;
+                  const ScanPoints& scan, MatchScore* best,
+                  Eigen::Matrix3d* information = nullptr) const;
 
   // The Gauss-Newton Hessian of -log p(z|x,m) at `pose`: J^T J / sigma^2
   // over the beams matched there (point-to-hit-mean residuals). It measures
@@ -70,13 +73,16 @@ class ScanMatcher {
                    const ScanPoints& scan, int window) const;
   Pose2D hill_climb(const grid::OccupancyGrid& map, const Pose2D& start,
                     const ScanPoints& scan, int window) const;
-  // J^T J and J^T r of the point-to-hit-mean residuals at `pose`; returns
-  // the number of matched beams.
+  // J^T J and J^T r of the point-to-hit-mean residuals at `pose`, and
+  // (if score_out) the score there, in one pass; returns the number of
+  // matched beams.
   int normal_equations(const grid::OccupancyGrid& map, const ScanPoints& scan,
-                       const Pose2D& pose, Eigen::Matrix3d* H, Eigen::Vector3d* g) const;
-  // One Gauss-Newton step; false if too few matches to constrain the pose.
-  bool gauss_newton_step(const grid::OccupancyGrid& map, const ScanPoints& scan,
-                         Pose2D* pose) const;
+                       const Pose2D& pose, Eigen::Matrix3d* H, Eigen::Vector3d* g,
+                       MatchScore* score_out) const;
+  // One Gauss-Newton step from the normal equations at *pose; false if too
+  // few matches or a degenerate H leave the pose unconstrained.
+  static bool gauss_newton_step(const Eigen::Matrix3d& H, const Eigen::Vector3d& g,
+                                int matched, Pose2D* pose);
   // Calls f(i, hx, hy, mean) for every beam i whose end point (hx, hy) at
   // `pose` has an obstacle in the window; `mean` is the nearest hit mean.
   template <class F>

@@ -22,6 +22,7 @@
 
 #include "hmt/alignment/grid_alignment.h"
 #include "hmt/common/config.h"
+#include "hmt/topology/closure_record.h"
 #include "hmt/topology/hmt_map.h"
 
 namespace hmt::tlca {
@@ -43,17 +44,8 @@ struct TlcaOptions {
 std::optional<size_t> dominant(const std::vector<double>& probabilities,
                                const TlcaOptions& options);
 
-// A loop closure made by TSBI on one hypothesis: the robot left area `from`
-// and was found in the known area `to`.
-struct ClosureRecord {
-  topology::AreaId from = topology::kNoArea;
-  topology::AreaId to = topology::kNoArea;
-  uint64_t step = 0;
-  // The arc between the two before this crossing, if they were adjacent.
-  std::optional<topology::Arc> arc_before;
-  // TSBI's measurement: the pose of `to`'s frame in `from`'s frame.
-  topology::PoseGaussian measurement;
-};
+// A loop closure made by TSBI on one hypothesis (topology/closure_record.h).
+using ClosureRecord = topology::ClosureRecord;
 
 struct ClosureReport {
   ClosureRecord record;

@@ -27,35 +27,19 @@
 // Composed operands are assumed independent (in the HMT map the arcs are,
 // 002 Proposition 3 and Eq. 11).
 //
-// Why not hmt::area::PoseGaussian (libs/area): that type is a plain struct
-// with one operation (relative pose) for the SSO, and it lives in the area
-// abstraction library, which links Spectra; the topological layer
-// needs composition, inversion, fusion and sampling, and must not pull the
-// area abstraction into everything that reads an HMT map. The two agree on
-// the parameterisation (mean + covariance of (x, y, theta)), so converting
-// is a member-wise copy. If the project later wants one type, it belongs in
-// libs/common.
+// The type itself is hmt::PoseGaussian (hmt/common/pose_gaussian.h), shared
+// with the area abstraction; these are the operations on it.
 #pragma once
 
 #include <Eigen/Core>
 
 #include "hmt/common/pose2d.h"
+#include "hmt/common/pose_gaussian.h"
 #include "hmt/common/random.h"
 
 namespace hmt::topology {
 
-struct PoseGaussian {
-  Pose2D mean;
-  // Covariance of (x, y, theta): symmetric, positive semi-definite. Zero
-  // means "exactly known" (e.g. the reference area's own origin); arcs of
-  // the HMT map require it positive definite.
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-
-  PoseGaussian() = default;
-  explicit PoseGaussian(const Pose2D& m,
-                        const Eigen::Matrix3d& c = Eigen::Matrix3d::Zero())
-      : mean(m), cov(c) {}
-};
+using PoseGaussian = hmt::PoseGaussian;
 
 // (b.x - a.x, b.y - a.y, wrap(b.theta - a.theta)): b - a in the space where
 // the covariance lives (not the SE(2) relative pose, see relative()).

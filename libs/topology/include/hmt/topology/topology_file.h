@@ -48,6 +48,7 @@
 #include <string>
 #include <vector>
 
+#include "hmt/topology/closure_record.h"
 #include "hmt/topology/hmt_map.h"
 #include "hmt/topology/hypotheses.h"
 
@@ -82,7 +83,7 @@ TopologySnapshot load_topology(const std::string& path);
 // The HMT map file of a run (hmt_map.bin): every live hypothesis with its
 // own map and path, and what is needed to continue the run from where it
 // stopped (hmt-slam resume). Same header layout as above, with magic
-// "HMTSESS\x1a" and its own version; payload (version 2):
+// "HMTSESS\x1a" and its own version; payload (version 3):
 //   u64 steps processed; f64 timestamp of the last one;
 //   u32 map count, then each distinct area map once, as a map is stored
 //     above (f64 resolution; u32 tile count; tiles): hypotheses share the
@@ -95,11 +96,17 @@ TopologySnapshot load_topology(const std::string& path);
 //     abstraction's frame; a topology payload as above with this
 //     hypothesis's map and its one path (log_weight = its log
 //     probability), except that each area's has_map byte and map are
-//     replaced by a u32 index into the map table (0xffffffff: no map).
-// Every part is checked as a topology file is, and each hypothesis's
-// current area must have a map. Files are deflated as they are encoded, so
-// writing one holds the compressed file, not the whole payload.
-constexpr uint32_t kSessionFormatVersion = 2;
+//     replaced by a u32 index into the map table (0xffffffff: no map);
+//     then its loop closures not yet accepted: u32 count, per closure
+//     u32 from, to; u64 step; f64 x, y, theta, cov[9] of the measurement;
+//     u8 has_arc_before, and if 1 that arc as stored above.
+// Version 2 files (the same without the closures) are read too, with no
+// pending closures. Every part is checked as a topology file is, each
+// hypothesis's current area must have a map, and a closure must join two
+// distinct areas of its hypothesis's map. Files are deflated as they are
+// encoded, so writing one holds the compressed file, not the whole payload.
+constexpr uint32_t kSessionFormatVersion = 3;
+constexpr uint32_t kOldestSessionFormatVersion = 2;
 inline constexpr char kSessionMagic[8] = {'H', 'M', 'T', 'S', 'E', 'S', 'S', '\x1a'};
 
 struct SessionHypothesis {
@@ -108,6 +115,7 @@ struct SessionHypothesis {
   TopologicalHypothesis topo;
   Pose2D robot;
   Pose2D aam_from_area;
+  std::vector<ClosureRecord> pending_closures;
 };
 
 struct Session {
