@@ -189,32 +189,58 @@ ExpectedLikelihood TransitionModel::expected_likelihood(
                              observations);
 }
 
-ExpectedLikelihood TransitionModel::expected_likelihood(
-    const grid::OccupancyGrid& map, const MatchField& field, const PoseGaussian& prior_in,
-    const Observations& observations) const {
-  ExpectedLikelihood out;
+TransitionModel::Search TransitionModel::prepare_search(const grid::OccupancyGrid& map,
+                                                        const MatchField& field,
+                                                        const PoseGaussian& prior_in,
+                                                        const Observations& observations) const {
+  Search out;
   const metric_slam::ScanPoints& obs = observations.points;
+  if (obs.hit.empty()) return out;
   // Log-likelihoods of the kept points stand for all the points.
-  const double k = observations.scale / gain_;
-  const size_t n = obs.hit.size();
-  if (n == 0) return out;
-  PoseGaussian prior = prior_in;
-  prior.cov.diagonal() += Eigen::Vector3d(opt_.prior_std_xy * opt_.prior_std_xy,
-                                          opt_.prior_std_xy * opt_.prior_std_xy,
-                                          opt_.prior_std_theta * opt_.prior_std_theta);
+  out.scale = observations.scale / gain_;
+  out.prior = prior_in;
+  out.prior.cov.diagonal() += Eigen::Vector3d(opt_.prior_std_xy * opt_.prior_std_xy,
+                                              opt_.prior_std_xy * opt_.prior_std_xy,
+                                              opt_.prior_std_theta * opt_.prior_std_theta);
+  const PoseGaussian& prior = out.prior;
   // No mode can pass the ratio gate if no pose in the prior's gate lets
-  // enough points reach an obstacle: not a candidate, as the matching below
+  // enough points reach an obstacle: not a candidate, as the matching
   // would conclude, at a fraction of its cost.
   if (opt_.bound_boxes > 0 &&
       !may_reach_ratio(field, obs.hit, prior, opt_.gate, opt_.min_match_ratio,
                        matcher_.options().window, opt_.bound_boxes))
     return out;
-  const Eigen::Matrix3d S = prior.cov;
-  const Eigen::Matrix3d S_inv = S.inverse();
+  out.prior_inverse = prior.cov.inverse();
   // l0: every point at the truncation distance (an empty map explains none).
   const grid::OccupancyGrid empty(map.resolution());
-  const double l0 = matcher_.score(empty, Pose2D(), obs).log_likelihood * k;
+  out.l0 = matcher_.score(empty, Pose2D(), obs).log_likelihood * out.scale;
+  out.starts = match_starts(prior, opt_.start_sigmas);
+  // A prior much wider than the matcher's basin (a long loop) is searched
+  // on a lattice first.
+  if (std::max(prior.cov(0, 0), prior.cov(1, 1)) > 0.3 * 0.3 || prior.cov(2, 2) > 0.1 * 0.1) {
+    const std::vector<Pose2D> wide = wide_search(field, prior, obs);
+    out.starts.insert(out.starts.begin() + 1, wide.begin(), wide.end());
+  }
+  return out;
+}
 
+TransitionModel::Match TransitionModel::match_from(const grid::OccupancyGrid& map,
+                                                   const Pose2D& start,
+                                                   const Observations& obs) const {
+  Match m;
+  m.pose = matcher_.optimize(map, start, obs.points, &m.score, &m.information);
+  return m;
+}
+
+ExpectedLikelihood TransitionModel::sum_modes(const Search& search,
+                                              const std::vector<Match>& matches,
+                                              const Observations& observations) const {
+  ExpectedLikelihood out;
+  const size_t n = observations.points.hit.size();
+  const PoseGaussian& prior = search.prior;
+  const Eigen::Matrix3d& S = prior.cov;
+  const Eigen::Matrix3d& S_inv = search.prior_inverse;
+  const double k = search.scale;
   struct Mode {
     Pose2D pose;
     double log_contribution;
@@ -222,34 +248,25 @@ ExpectedLikelihood TransitionModel::expected_likelihood(
     Eigen::Matrix3d H;
   };
   std::vector<Mode> modes;
-  std::vector<Pose2D> starts = match_starts(prior, opt_.start_sigmas);
-  // A prior much wider than the matcher's basin (a long loop) is searched
-  // on a lattice first.
-  if (std::max(prior.cov(0, 0), prior.cov(1, 1)) > 0.3 * 0.3 || prior.cov(2, 2) > 0.1 * 0.1) {
-    const std::vector<Pose2D> wide = wide_search(field, prior, obs);
-    starts.insert(starts.begin() + 1, wide.begin(), wide.end());
-  }
-  for (const Pose2D& start : starts) {
-    metric_slam::MatchScore ms;
-    Eigen::Matrix3d info;
-    const Pose2D x = matcher_.optimize(map, start, obs, &ms, &info);
-    const double ratio = static_cast<double>(ms.matched) / static_cast<double>(n);
+  for (const Match& m : matches) {
+    const Pose2D& x = m.pose;
+    const double ratio = static_cast<double>(m.score.matched) / static_cast<double>(n);
     if (ratio < opt_.min_match_ratio) continue;
     const Eigen::Vector3d e = topology::difference(x, prior.mean);
     if (e.dot(S_inv * e) > opt_.gate) continue;
-    const bool seen = std::any_of(modes.begin(), modes.end(), [&](const Mode& m) {
-      const Pose2D d = x - m.pose;
+    const bool seen = std::any_of(modes.begin(), modes.end(), [&](const Mode& md) {
+      const Pose2D d = x - md.pose;
       return d.norm() < opt_.mode_merge_distance &&
              std::fabs(d.theta) < opt_.mode_merge_angle;
     });
     if (seen) continue;
     // Laplace around the mode; H is the tempered Gauss-Newton information.
-    const Eigen::Matrix3d H = info * k;
+    const Eigen::Matrix3d H = m.information * k;
     const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
     const double log_det = std::log((I + H * S).determinant());
     const double quad = e.dot(H * (I + S * H).inverse() * e);
-    const double l = ms.log_likelihood * k;
-    modes.push_back({x, (l - l0) - 0.5 * log_det - 0.5 * quad, ratio, H});
+    const double l = m.score.log_likelihood * k;
+    modes.push_back({x, (l - search.l0) - 0.5 * log_det - 0.5 * quad, ratio, H});
   }
   if (modes.empty()) return out;
   std::vector<double> contributions;
@@ -267,6 +284,15 @@ ExpectedLikelihood TransitionModel::expected_likelihood(
   out.robot.cov = (modes[best].H + S_inv).inverse();
   out.robot.cov = 0.5 * (out.robot.cov + out.robot.cov.transpose());
   return out;
+}
+
+ExpectedLikelihood TransitionModel::expected_likelihood(
+    const grid::OccupancyGrid& map, const MatchField& field, const PoseGaussian& prior,
+    const Observations& obs) const {
+  const Search search = prepare_search(map, field, prior, obs);
+  std::vector<Match> matches;
+  for (const Pose2D& start : search.starts) matches.push_back(match_from(map, start, obs));
+  return sum_modes(search, matches, obs);
 }
 
 std::vector<Outcome> TransitionModel::reachable_areas(const topology::HmtMap& map,
@@ -325,18 +351,6 @@ std::vector<std::shared_ptr<const MatchField>> TransitionModel::fields_for(
   return out;
 }
 
-bool TransitionModel::weigh(const topology::Area& area, const MatchField& field,
-                            const Observations& obs, Outcome* o) const {
-  const ExpectedLikelihood f = expected_likelihood(*area.map, field, o->prior, obs);
-  if (!f.candidate) return false;
-  if (opt_.area_check && !same_area(area, f.robot.mean, obs)) return false;
-  o->log_f = f.log_f;
-  o->robot = f.robot;
-  o->match_ratio = f.match_ratio;
-  o->modes = f.modes;
-  return true;
-}
-
 std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
                                                AreaId current,
                                                const PoseGaussian& robot,
@@ -345,10 +359,34 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
   outcomes[0].log_f = opt_.log_eta;
   std::vector<Outcome> areas = reachable_areas(map, current, robot, obs);
   const auto fields = fields_for(map, areas);
-  // Each area is weighed on its own: the order of the threads cannot matter.
+  // Each area and each of its starts is computed on its own, and the modes
+  // are summed in start order: the order of the threads cannot matter.
+  std::vector<Search> searches(areas.size());
+  for_each_index(areas.size(), [&](size_t i) {
+    searches[i] = prepare_search(*map.area(areas[i].area).map, *fields[i], areas[i].prior, obs);
+  });
+  std::vector<std::pair<size_t, size_t>> jobs;  // (area, start)
+  std::vector<std::vector<Match>> matches(areas.size());
+  for (size_t i = 0; i < areas.size(); ++i) {
+    matches[i].resize(searches[i].starts.size());
+    for (size_t k = 0; k < searches[i].starts.size(); ++k) jobs.emplace_back(i, k);
+  }
+  for_each_index(jobs.size(), [&](size_t j) {
+    const auto [i, k] = jobs[j];
+    matches[i][k] = match_from(*map.area(areas[i].area).map, searches[i].starts[k], obs);
+  });
   std::vector<char> candidate(areas.size(), 0);
   for_each_index(areas.size(), [&](size_t i) {
-    candidate[i] = weigh(map.area(areas[i].area), *fields[i], obs, &areas[i]);
+    const topology::Area& area = map.area(areas[i].area);
+    const ExpectedLikelihood f = sum_modes(searches[i], matches[i], obs);
+    if (!f.candidate) return;
+    if (opt_.area_check && !same_area(area, f.robot.mean, obs)) return;
+    Outcome& o = areas[i];
+    o.log_f = f.log_f;
+    o.robot = f.robot;
+    o.match_ratio = f.match_ratio;
+    o.modes = f.modes;
+    candidate[i] = 1;
   });
   for (size_t i = 0; i < areas.size(); ++i)
     if (candidate[i]) outcomes.push_back(std::move(areas[i]));

@@ -51,8 +51,9 @@
 // is not a candidate -- the answer the full evaluation would give, without
 // the matching. The wide search scores its lattice on the same raster (one
 // lookup per point). Rasters are built once per archived map and kept while
-// a hypothesis holds the map; the candidates are weighed in parallel on the
-// worker pool (each alone, so the result does not depend on the threads).
+// a hypothesis holds the map; the candidates' matcher starts run in one
+// parallel loop on the worker pool (each alone, their modes summed in start
+// order, so the result does not depend on the threads).
 #pragma once
 
 #include <functional>
@@ -133,10 +134,30 @@ class TransitionModel {
   // parallel) and cached. Fields of maps no hypothesis holds are dropped.
   std::vector<std::shared_ptr<const MatchField>> fields_for(
       const topology::HmtMap& map, const std::vector<Outcome>& areas);
-  // Fills log F, the mode and its ratio of a reachable area; false if the
-  // area is not a candidate.
-  bool weigh(const topology::Area& area, const MatchField& field, const Observations& obs,
-             Outcome* o) const;
+  // F(gamma) in three steps, so that evaluate() can run the matcher
+  // starts of every candidate area in one parallel loop (an event often
+  // has a single candidate, whose 27+ starts would otherwise run on one
+  // thread): the search's set-up (the widened prior, the gates, the starts;
+  // no starts when a gate already rules the area out), one match per
+  // start, and the modes' Laplace sum in start order.
+  struct Search {
+    topology::PoseGaussian prior;  // widened by prior_std_*
+    Eigen::Matrix3d prior_inverse = Eigen::Matrix3d::Identity();
+    double scale = 0.0;           // log-likelihood tempering
+    double l0 = 0.0;              // log-likelihood of an empty map
+    std::vector<Pose2D> starts;
+  };
+  struct Match {
+    Pose2D pose;
+    metric_slam::MatchScore score;
+    Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  };
+  Search prepare_search(const grid::OccupancyGrid& map, const MatchField& field,
+                        const topology::PoseGaussian& prior, const Observations& obs) const;
+  Match match_from(const grid::OccupancyGrid& map, const Pose2D& start,
+                   const Observations& obs) const;
+  ExpectedLikelihood sum_modes(const Search& search, const std::vector<Match>& matches,
+                               const Observations& obs) const;
   ExpectedLikelihood expected_likelihood(const grid::OccupancyGrid& map,
                                          const MatchField& field,
                                          const topology::PoseGaussian& prior,
