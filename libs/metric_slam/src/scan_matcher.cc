@@ -6,6 +6,36 @@
 #include <limits>
 
 namespace hmt::metric_slam {
+namespace {
+
+// The likelihood field summed over a scan's beams. The field is truncated at
+// the window's reach: a beam with no obstacle in the window costs as much
+// as one at the window's edge. score() and normal_equations() both sum
+// through it, so Gauss-Newton's scores are score()'s to the bit.
+class FieldSum {
+ public:
+  FieldSum(double resolution, int window)
+      : max_d2_((window + 0.5) * (window + 0.5) * resolution * resolution) {}
+  void add(double d2) {
+    sum_d2_ += std::min(d2, max_d2_);
+    ++matched_;
+  }
+  int matched() const { return matched_; }
+  MatchScore score(size_t beams, double inv_2sigma2) const {
+    MatchScore out;
+    out.matched = matched_;
+    out.log_likelihood =
+        -(sum_d2_ + (static_cast<double>(beams) - matched_) * max_d2_) * inv_2sigma2;
+    return out;
+  }
+
+ private:
+  double max_d2_;
+  double sum_d2_ = 0.0;
+  int matched_ = 0;
+};
+
+}  // namespace
 
 void MatcherOptions::load(Config& cfg, const std::string& s) {
   max_range = cfg.get_double(s, "max_range", max_range);
@@ -108,22 +138,10 @@ MatchScore ScanMatcher::score(const grid::OccupancyGrid& map, const Pose2D& pose
 
 MatchScore ScanMatcher::score(const grid::OccupancyGrid& map, const Pose2D& pose,
                               const ScanPoints& scan, int w) const {
-  // The field is truncated at the window's reach: a beam with no obstacle
-  // in the window costs as much as one at the window's edge.
-  const double res = map.resolution();
-  const double max_d2 = (w + 0.5) * (w + 0.5) * res * res;
-  double sum_d2 = 0.0;
-  int matched = 0;
+  FieldSum sum(map.resolution(), w);
   for_each_match(map, pose, scan, w,
-                 [&](size_t, double, double, double d2, const Point2D&) {
-                   sum_d2 += std::min(d2, max_d2);
-                   ++matched;
-                 });
-  MatchScore out;
-  out.matched = matched;
-  out.log_likelihood =
-      -(sum_d2 + (static_cast<double>(scan.hit.size()) - matched) * max_d2) * inv_2sigma2_;
-  return out;
+                 [&](size_t, double, double, double d2, const Point2D&) { sum.add(d2); });
+  return sum.score(scan.hit.size(), inv_2sigma2_);
 }
 
 Pose2D ScanMatcher::hill_climb(const grid::OccupancyGrid& map, const Pose2D& start,
@@ -178,13 +196,9 @@ int ScanMatcher::normal_equations(const grid::OccupancyGrid& map,
   // nearest hit mean; J_i = [I | dR/dtheta p_i]. The same pass sums the
   // score at `pose` exactly as score() does (same beams, same order), so
   // Gauss-Newton needs one pass per pose instead of two.
-  H->setZero();
-  g->setZero();
-  int n = 0;
   const double c = std::cos(pose.theta), s = std::sin(pose.theta);
-  const double res = map.resolution();
-  const double max_d2 = (opt_.window + 0.5) * (opt_.window + 0.5) * res * res;
-  double hxt = 0, hyt = 0, htt = 0, gx = 0, gy = 0, gt = 0, sum_d2 = 0;
+  FieldSum sum(map.resolution(), opt_.window);
+  double hxt = 0, hyt = 0, htt = 0, gx = 0, gy = 0, gt = 0;
   for_each_match(map, pose, scan, opt_.window,
                  [&](size_t i, double hx, double hy, double d2, const Point2D& m) {
                    const Point2D& p = scan.hit[i];
@@ -196,27 +210,13 @@ int ScanMatcher::normal_equations(const grid::OccupancyGrid& map,
                    gx += rx;
                    gy += ry;
                    gt += jx * rx + jy * ry;
-                   sum_d2 += std::min(d2, max_d2);
-                   ++n;
+                   sum.add(d2);
                  });
+  const int n = sum.matched();
   *H << n, 0, hxt, 0, n, hyt, hxt, hyt, htt;
   *g << gx, gy, gt;
-  if (score_out) {
-    score_out->matched = n;
-    score_out->log_likelihood =
-        -(sum_d2 + (static_cast<double>(scan.hit.size()) - n) * max_d2) * inv_2sigma2_;
-  }
+  *score_out = sum.score(scan.hit.size(), inv_2sigma2_);
   return n;
-}
-
-Eigen::Matrix3d ScanMatcher::information(const grid::OccupancyGrid& map,
-                                         const Pose2D& pose, const ScanPoints& scan,
-                                         int* matched) const {
-  Eigen::Matrix3d H;
-  Eigen::Vector3d g;
-  const int n = normal_equations(map, scan, pose, &H, &g, nullptr);
-  if (matched) *matched = n;
-  return H * (2.0 * inv_2sigma2_);
 }
 
 bool ScanMatcher::gauss_newton_step(const Eigen::Matrix3d& H, const Eigen::Vector3d& g,
@@ -257,7 +257,7 @@ Pose2D ScanMatcher::optimize(const grid::OccupancyGrid& map, const Pose2D& start
     matched = cand_matched;
   }
   if (best_out) *best_out = best_score;
-  if (information_out) *information_out = H * (2.0 * inv_2sigma2_);  // information() at best
+  if (information_out) *information_out = H * (2.0 * inv_2sigma2_);
   return best;
 }
 

@@ -53,17 +53,14 @@ class ScanMatcher {
   // Hill climbing from `start` (GMapping-style: try +-x, +-y, +-theta, take
   // the best, halve the steps when nothing improves) on a subset of beams,
   // then Gauss-Newton on all beams against the matched cells' hit means.
-  // `information` (if given) gets information() at the result, which the
-  // last Gauss-Newton pass has already summed.
+  // `information` (if given) gets the Gauss-Newton Hessian of
+  // -log p(z|x,m) at the result, J^T J / sigma^2 over the beams matched
+  // there (point-to-hit-mean residuals): how sharply the scan pins the pose
+  // down. The last Gauss-Newton pass has already summed it.
   Pose2D optimize(const grid::OccupancyGrid& map, const Pose2D& start,
                   const ScanPoints& scan, MatchScore* best,
                   Eigen::Matrix3d* information = nullptr) const;
 
-  // The Gauss-Newton Hessian of -log p(z|x,m) at `pose`: J^T J / sigma^2
-  // over the beams matched there (point-to-hit-mean residuals). It measures
-  // how sharply the scan pins the pose down; `matched` gets the count.
-  Eigen::Matrix3d information(const grid::OccupancyGrid& map, const Pose2D& pose,
-                              const ScanPoints& scan, int* matched = nullptr) const;
   const MatcherOptions& options() const { return opt_; }
   // A cell at or above this log-odds is an obstacle to match against.
   grid::LogOdds occupied_threshold() const { return occ_threshold_; }
@@ -73,9 +70,8 @@ class ScanMatcher {
                    const ScanPoints& scan, int window) const;
   Pose2D hill_climb(const grid::OccupancyGrid& map, const Pose2D& start,
                     const ScanPoints& scan, int window) const;
-  // J^T J and J^T r of the point-to-hit-mean residuals at `pose`, and
-  // (if score_out) the score there, in one pass; returns the number of
-  // matched beams.
+  // J^T J and J^T r of the point-to-hit-mean residuals at `pose`, and the
+  // score there, in one pass; returns the number of matched beams.
   int normal_equations(const grid::OccupancyGrid& map, const ScanPoints& scan,
                        const Pose2D& pose, Eigen::Matrix3d* H, Eigen::Vector3d* g,
                        MatchScore* score_out) const;
