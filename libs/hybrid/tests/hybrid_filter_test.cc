@@ -12,6 +12,15 @@ namespace {
 using testing_ring::expect_ring_closed;
 using testing_ring::ring_options;
 
+// The saved state of a one-hypothesis run over the first `steps` of `run`.
+topology::Session saved_after(const testing_sim::SimRun& run, size_t steps) {
+  HybridFilter f(ring_options());
+  for (size_t i = 0; i < steps; ++i) f.process(run.log.steps[i]);
+  topology::Session s = f.session();
+  EXPECT_EQ(s.hypotheses.size(), 1u);
+  return s;
+}
+
 TEST(HybridFilter, ClosesTheLoopByInference) {
   const auto run = testing_ring::ring_run(7);
   HybridFilter f(ring_options());
@@ -27,9 +36,7 @@ TEST(HybridFilter, HypothesesShareTheParticleBudgetWhenAsked) {
   // Two rival topologies of probability 0.9 and 0.1: the state of a run
   // resumed with min_particles 3 (of 10).
   const auto run = testing_ring::ring_run(7);
-  HybridFilter first(ring_options());
-  for (size_t i = 0; i < 60; ++i) first.process(run.log.steps[i]);
-  topology::Session s = first.session();
+  topology::Session s = saved_after(run, 60);
   ASSERT_EQ(s.hypotheses.size(), 1u);
   s.hypotheses.push_back(s.hypotheses[0]);
   s.hypotheses[1].id = s.hypotheses[0].id + 1;
@@ -65,10 +72,7 @@ TEST(HybridFilter, ResumedRunStillAlignsTheClosuresMadeBeforeTheSave) {
   // A saved run whose hypothesis holds a loop closure TLCA has not yet
   // accepted: after the file round trip and resume, acceptance hands it to
   // fine alignment as the uninterrupted run would have.
-  const auto run = testing_ring::ring_run(7);
-  HybridFilter first(ring_options());
-  for (size_t i = 0; i < 60; ++i) first.process(run.log.steps[i]);
-  topology::Session s = first.session();
+  topology::Session s = saved_after(testing_ring::ring_run(7), 60);
   ASSERT_EQ(s.hypotheses.size(), 1u);
   topology::SessionHypothesis& h = s.hypotheses[0];
   const std::vector<topology::AreaId> areas = h.map.area_ids();

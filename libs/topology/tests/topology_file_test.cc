@@ -604,6 +604,43 @@ TEST(SessionFile, MapsHypothesesShareAreStoredAndLoadedOnce) {
   EXPECT_GT(encode_session(apart).size(), single.size() + 1000);
 }
 
+// A session payload written from the documented layout, up to and
+// including the one hypothesis's path (version 3 adds its closures after
+// it): `maps` empty grids stored, areas 0 and 1 both naming map
+// `map_index`, the hypothesis in area 0. With one map and index 0 it is the
+// smallest valid file.
+std::string session_payload(uint32_t maps, uint32_t map_index) {
+  std::string p;
+  put_u64(p, 1);    // steps
+  put_f64(p, 2.0);  // time
+  put_u32(p, maps);  // maps stored
+  for (uint32_t m = 0; m < maps; ++m) {
+    put_f64(p, 0.05);  // resolution
+    put_u32(p, 0);     // tiles
+  }
+  put_u32(p, 1);    // hypotheses
+  put_u32(p, 0);    // its id
+  for (int i = 0; i < 6; ++i) put_f64(p, 0.0);  // robot, area abstraction frame
+  put_u32(p, 2);                                // areas 0 and 1
+  for (uint32_t id : {0u, 1u}) {
+    put_u32(p, id);
+    put_u32(p, id == 0 ? 0xffffffffu : 0u);       // parent
+    for (int i = 0; i < 3; ++i) put_f64(p, 0.0);  // origin
+    put_u64(p, 0);                                // created step
+    put_f64(p, 0.0);                              // created time
+    put_u32(p, 0);                                // keyframes
+    put_u32(p, map_index);                        // map index
+  }
+  put_u32(p, 0);  // arcs
+  put_u32(p, 1);  // paths
+  put_f64(p, 0.0);
+  put_u32(p, 1);
+  put_u32(p, 0);
+  put_u64(p, 0);
+  return p;
+}
+std::string minimal_session_payload() { return session_payload(1, 0); }
+
 TEST(SessionFile, BadFilesAreInputErrorsNamingTheProblem) {
   const Session s = sample_session();
   const std::string bytes = encode_session(s);
@@ -625,64 +662,12 @@ TEST(SessionFile, BadFilesAreInputErrorsNamingTheProblem) {
   flipped[bytes.size() / 2] ^= 0x10;
   expect_error(flipped, "corrupt");
   // An area naming a map the file does not store (checksums valid).
-  std::string p;
-  put_u64(p, 1);    // steps
-  put_f64(p, 2.0);  // time
-  put_u32(p, 0);    // maps stored
-  put_u32(p, 1);    // hypotheses
-  put_u32(p, 0);    // its id
-  for (int i = 0; i < 6; ++i) put_f64(p, 0.0);  // robot, area abstraction frame
-  put_u32(p, 1);                                // areas
-  put_u32(p, 0);                                // id
-  put_u32(p, 0xffffffffu);                      // no parent
-  for (int i = 0; i < 3; ++i) put_f64(p, 0.0);  // origin
-  put_u64(p, 0);                                // created step
-  put_f64(p, 0.0);                              // created time
-  put_u32(p, 0);                                // keyframes
-  put_u32(p, 5);                                // map index: none stored
-  put_u32(p, 0);                                // arcs
-  put_u32(p, 1);                                // paths
-  put_f64(p, 0.0);
-  put_u32(p, 1);
-  put_u32(p, 0);
-  put_u64(p, 0);
-  expect_error(wrap(p, kSessionMagic, kSessionFormatVersion), "map index 5 beyond the 0 maps stored");
+  expect_error(wrap(session_payload(0, 5), kSessionMagic, kSessionFormatVersion),
+               "map index 5 beyond the 0 maps stored");
   // A hypothesis whose current area has no map cannot be continued.
   Session no_map = s;
   no_map.hypotheses[0].map = f.map;  // area 2 (current) not archived
   expect_error(encode_session(no_map), "current area has no map");
-}
-
-// The smallest valid session payload with one hypothesis in area 0, which
-// has map 0 (an empty grid), up to and including its path; version 3 adds
-// the closures after it.
-std::string minimal_session_payload() {
-  std::string p;
-  put_u64(p, 1);    // steps
-  put_f64(p, 2.0);  // time
-  put_u32(p, 1);    // maps stored
-  put_f64(p, 0.05); //   resolution
-  put_u32(p, 0);    //   tiles
-  put_u32(p, 1);    // hypotheses
-  put_u32(p, 0);    // its id
-  for (int i = 0; i < 6; ++i) put_f64(p, 0.0);  // robot, area abstraction frame
-  put_u32(p, 2);                                // areas 0 and 1
-  for (uint32_t id : {0u, 1u}) {
-    put_u32(p, id);
-    put_u32(p, id == 0 ? 0xffffffffu : 0u);       // parent
-    for (int i = 0; i < 3; ++i) put_f64(p, 0.0);  // origin
-    put_u64(p, 0);                                // created step
-    put_f64(p, 0.0);                              // created time
-    put_u32(p, 0);                                // keyframes
-    put_u32(p, 0);                                // map index
-  }
-  put_u32(p, 0);  // arcs
-  put_u32(p, 1);  // paths
-  put_f64(p, 0.0);
-  put_u32(p, 1);
-  put_u32(p, 0);
-  put_u64(p, 0);
-  return p;
 }
 
 TEST(SessionFile, ReadsVersionTwoFilesWithoutClosures) {
