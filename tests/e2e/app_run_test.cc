@@ -181,5 +181,15 @@ TEST(AppRun, EffectiveConfigRecordsOverrides) {
   EXPECT_NE(eff.find("[scan_matcher]"), std::string::npos);
 }
 
+TEST(AppRun, ProgressEndsWithEveryScanCounted) {
+  // Metric SLAM runs behind the feeding of the log, so the last progress
+  // line before the end may lag; the closing line counts every scan.
+  const std::string dir = temp_dir("progress");
+  const AppResult r =
+      run_app("run --config config/default.ini --set input.max_steps=60 --out '" + dir + "/o'", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE((r.out + r.err).find("done: 60 scans"), std::string::npos) << r.out << r.err;
+}
+
 }  // namespace
 }  // namespace hmt::e2e

@@ -117,6 +117,8 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   }
   system.finish();
   if (probe) probe->stop();
+  // Metric SLAM may have been behind the feeding: every scan is done now.
+  progress.update(n);
   progress.finish();
   const hybrid::HybridFilter& filter = system.filter();
   size_t peak_map_bytes = 0;
