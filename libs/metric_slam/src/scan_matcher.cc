@@ -3,7 +3,11 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+
+#include "hmt/common/error.h"
+#include "match_window.h"
 
 namespace hmt::metric_slam {
 namespace {
@@ -52,7 +56,7 @@ void MatcherOptions::load(Config& cfg, const std::string& s) {
   gauss_newton_iterations = cfg.get_int(s, "gauss_newton_iterations", gauss_newton_iterations);
   require(max_range > 0, s, "max_range", "> 0");
   require(beam_skip >= 0, s, "beam_skip", ">= 0");
-  require(window >= 0 && window <= 5, s, "window", "in [0, 5]");
+  require(window >= 0 && window <= kMaxWindow, s, "window", "in [0, 5]");
   require(sigma > 0, s, "sigma", "> 0");
   require(occupied_probability > 0.5 && occupied_probability < 1, s,
           "occupied_probability", "in (0.5, 1)");
@@ -60,7 +64,7 @@ void MatcherOptions::load(Config& cfg, const std::string& s) {
   require(angular_step > 0, s, "angular_step", "> 0");
   require(refinements >= 0 && refinements <= 20, s, "refinements", "in [0, 20]");
   require(coarse_beams >= 0, s, "coarse_beams", ">= 0 (0: all beams)");
-  require(coarse_window >= 0 && coarse_window <= 5, s, "coarse_window", "in [0, 5]");
+  require(coarse_window >= 0 && coarse_window <= kMaxWindow, s, "coarse_window", "in [0, 5]");
   require(gauss_newton_iterations >= 0 && gauss_newton_iterations <= 50, s,
           "gauss_newton_iterations", "in [0, 50]");
   require(min_match_ratio >= 0 && min_match_ratio <= 1, s, "min_match_ratio",
@@ -77,7 +81,26 @@ ScanMatcher::ScanMatcher(const MatcherOptions& opt) : opt_(opt) {
 template <class F>
 void ScanMatcher::for_each_match(const grid::OccupancyGrid& map, const Pose2D& pose,
                                  const ScanPoints& scan, int w, F&& f) const {
+  // The window radius as a compile-time constant: the window loops unroll
+  // into straight code.
+  switch (w) {
+    case 0: return for_each_match_in<0>(map, pose, scan, f);
+    case 1: return for_each_match_in<1>(map, pose, scan, f);
+    case 2: return for_each_match_in<2>(map, pose, scan, f);
+    case 3: return for_each_match_in<3>(map, pose, scan, f);
+    case 4: return for_each_match_in<4>(map, pose, scan, f);
+    case 5: return for_each_match_in<5>(map, pose, scan, f);
+  }
+  throw Error(ExitCode::kInternal, "scan matcher: window outside [0, 5]");
+}
+
+template <int W, class F>
+void ScanMatcher::for_each_match_in(const grid::OccupancyGrid& map, const Pose2D& pose,
+                                    const ScanPoints& scan, F& f) const {
+  static_assert(W >= 0 && W <= kMaxWindow);
+  constexpr int kSide = 2 * W + 1;
   const double c = std::cos(pose.theta), s = std::sin(pose.theta);
+  const double res = map.resolution(), k = res / grid::kHitScale;
   const size_t n = scan.hit.size();
   for (size_t i = 0; i < n; ++i) {
     const Point2D& p = scan.hit[i];
@@ -85,49 +108,41 @@ void ScanMatcher::for_each_match(const grid::OccupancyGrid& map, const Pose2D& p
     const double hx = pose.x + c * p.x - s * p.y, hy = pose.y + s * p.x + c * p.y;
     const double fx = pose.x + c * q.x - s * q.y, fy = pose.y + s * q.x + c * q.y;
     const grid::CellIndex hc = map.cell_of(hx, hy), fc = map.cell_of(fx, fy);
+    const Window<W> hit(map, hc, true), probe(map, fc, false);
     double best = std::numeric_limits<double>::infinity();
-    Point2D best_mean;
-    auto consider = [&](const grid::CellIndex& cq, const grid::HitMean& h) {
-      const Point2D m = map.hit_mean(cq, h);
-      const double d2 = (hx - m.x) * (hx - m.x) + (hy - m.y) * (hy - m.y);
+    double bx = 0, by = 0;
+    // The nearest hit mean among the window's obstacles, visited row by row
+    // (the first one wins a tie).
+    auto consider = [&](int r, int col) {
+      const grid::HitMean h = hit.hit(r, col);
+      const double mx = (hc.x - W + col + 0.5) * res + h.hx * k;  // as hit_mean()
+      const double my = (hc.y - W + r + 0.5) * res + h.hy * k;
+      const double d2 = (hx - mx) * (hx - mx) + (hy - my) * (hy - my);
       if (d2 < best) {
         best = d2;
-        best_mean = m;
+        bx = mx;
+        by = my;
       }
     };
-    using grid::kTileBits;
-    const int tx = (hc.x - w) >> kTileBits, ty = (hc.y - w) >> kTileBits;
-    const int ftx = (fc.x - w) >> kTileBits, fty = (fc.y - w) >> kTileBits;
-    if (tx == (hc.x + w) >> kTileBits && ty == (hc.y + w) >> kTileBits &&
-        ftx == (fc.x + w) >> kTileBits && fty == (fc.y + w) >> kTileBits) {
-      // Fast path (most beams): both windows lie inside single tiles, so
-      // the tiles are fetched once rather than once per cell.
-      const grid::Tile* th = map.tile(tx, ty);
-      if (!th) continue;  // never observed: no obstacle to match
-      const grid::Tile* tf = map.tile(ftx, fty);
-      for (int dy = -w; dy <= w; ++dy)
-        for (int dx = -w; dx <= w; ++dx) {
-          const grid::CellIndex cq{hc.x + dx, hc.y + dy};
-          const int i = grid::OccupancyGrid::index_in_tile(cq);
-          if (th->logodds[i] < occ_threshold_) continue;
-          if (tf && tf->logodds[grid::OccupancyGrid::index_in_tile({fc.x + dx, fc.y + dy})] >=
-                        occ_threshold_)
-            continue;
-          consider(cq, th->hit(i));
-        }
+    if constexpr (kSide * kSide <= 64) {
+      // One word for the whole window: a single loop over its obstacles.
+      uint64_t bits = 0;
+#pragma GCC unroll 8
+      for (int r = 0; r < kSide; ++r)
+        bits |= static_cast<uint64_t>(obstacle_bits<kSide>(hit.logodds(r), probe.logodds(r),
+                                                            occ_threshold_))
+                << (r * kSide);
+      for (; bits != 0; bits &= bits - 1) {
+        const int b = __builtin_ctzll(bits);
+        consider(b / kSide, b % kSide);
+      }
     } else {
-      for (int dy = -w; dy <= w; ++dy)
-        for (int dx = -w; dx <= w; ++dx) {
-          const grid::CellIndex cq{hc.x + dx, hc.y + dy};
-          const grid::Tile* t = map.tile_of(cq);
-          const int i = grid::OccupancyGrid::index_in_tile(cq);
-          if (!t || t->logodds[i] < occ_threshold_) continue;
-          // Unknown space reads 0, below the threshold, as before.
-          if (map.logodds({fc.x + dx, fc.y + dy}) >= occ_threshold_) continue;
-          consider(cq, t->hit(i));
-        }
+      for (int r = 0; r < kSide; ++r)
+        for (uint32_t bits = obstacle_bits<kSide>(hit.logodds(r), probe.logodds(r), occ_threshold_);
+             bits != 0; bits &= bits - 1)
+          consider(r, __builtin_ctz(bits));
     }
-    if (best < std::numeric_limits<double>::infinity()) f(i, hx, hy, best, best_mean);
+    if (best < std::numeric_limits<double>::infinity()) f(i, hx, hy, best, Point2D{bx, by});
   }
 }
 

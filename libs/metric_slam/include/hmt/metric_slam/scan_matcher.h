@@ -18,6 +18,9 @@
 
 namespace hmt::metric_slam {
 
+// The widest search window (cells) the matcher accepts.
+constexpr int kMaxWindow = 5;
+
 struct MatcherOptions {
   double max_range = 20.0;          // beams longer than this are not matched
   int beam_skip = 0;                // use every (skip+1)-th beam
@@ -84,6 +87,9 @@ class ScanMatcher {
   template <class F>
   void for_each_match(const grid::OccupancyGrid& map, const Pose2D& pose,
                       const ScanPoints& scan, int window, F&& f) const;
+  template <int W, class F>
+  void for_each_match_in(const grid::OccupancyGrid& map, const Pose2D& pose,
+                         const ScanPoints& scan, F& f) const;
 
   MatcherOptions opt_;
   grid::LogOdds occ_threshold_;
