@@ -39,12 +39,11 @@ HybridFilter::HybridFilter(const HmtOptions& options)
     : opt_(options),
       pool_(std::make_shared<metric_slam::WorkerPool>(
           metric_slam::WorkerPool::threads_for(options.rbpf.threads))),
+      topology_pool_(std::make_shared<metric_slam::WorkerPool>(
+          metric_slam::WorkerPool::threads_for(options.rbpf.threads))),
       aam_(options.area),
-      // TSBI weighs its candidates on a pool of its own: in live mode it runs
-      // beside metric SLAM, which must not wait for it.
       tsbi_(options.tsbi, options.rbpf.matcher, options.rbpf.likelihood_gain, options.area,
-            std::make_shared<metric_slam::WorkerPool>(
-                metric_slam::WorkerPool::threads_for(options.rbpf.threads))) {}
+            topology_pool_) {}
 
 void HybridFilter::start(const LogStep& step) {
   Hypothesis h{metric_slam::GridRbpf(opt_.rbpf, pool_)};
@@ -81,8 +80,16 @@ std::optional<area::Keyframe> HybridFilter::metric_step(const LogStep& step) {
   if (hyps_.empty()) {
     start(step);
   } else {
+    // The particles of every hypothesis move in one parallel loop: a loop
+    // per hypothesis would wait at its end for its slowest particle.
+    std::vector<std::pair<size_t, size_t>> moves;  // (hypothesis, particle)
+    for (size_t k = 0; k < hyps_.size(); ++k)
+      if (hyps_[k].filter.begin_step(step))
+        for (size_t i = 0; i < hyps_[k].filter.pending_moves(); ++i) moves.emplace_back(k, i);
+    pool_->parallel_for(moves.size(),
+                        [&](size_t j) { hyps_[moves[j].first].filter.move(moves[j].second); });
     for (Hypothesis& h : hyps_) {
-      h.filter.process(step);
+      h.filter.end_step();
       h.topo.log_weight += h.filter.last_log_evidence();
     }
     normalise_and_prune();
@@ -393,9 +400,11 @@ std::optional<AlignmentJob> HybridFilter::accept_if_dominant() {
 }
 
 std::vector<tlca::ClosureReport> HybridFilter::align(const AlignmentJob& job) const {
-  std::vector<tlca::ClosureReport> reports;
-  for (const tlca::ClosureRecord& rec : job.closures)
-    reports.push_back(tlca::align_closure(job.map, rec, opt_.tlca));
+  // Each closure is aligned alone (an acceptance brings up to tens of them).
+  std::vector<tlca::ClosureReport> reports(job.closures.size());
+  topology_pool_->parallel_for(job.closures.size(), [&](size_t i) {
+    reports[i] = tlca::align_closure(job.map, job.closures[i], opt_.tlca);
+  });
   return reports;
 }
 

@@ -140,12 +140,19 @@ void GridRbpf::move_particle(size_t i, const LogStep& step, const ScanPoints& pt
 }
 
 void GridRbpf::process(const LogStep& input) {
+  if (!begin_step(input)) return;
+  pool_->parallel_for(pending_moves(), [&](size_t i) { move(i); });
+  end_step();
+}
+
+bool GridRbpf::begin_step(const LogStep& input) {
+  if (step_) throw Error(ExitCode::kInternal, "GridRbpf::begin_step before end_step");
   last_log_evidence_ = 0.0;
   if (particles_.empty()) {
     last_scan_ = input.scan;
     initialise(input);
     ++stats_.steps;
-    return;
+    return false;
   }
   // Filter only once the robot has moved enough since the last update: a
   // scan from (nearly) the same place adds little, and a robot standing
@@ -157,36 +164,46 @@ void GridRbpf::process(const LogStep& input) {
       std::fabs(pending_motion_.theta) < opt_.update_angle) {
     for (auto& p : particles_) p.path.push_back(p.pose + pending_motion_);
     ++stats_.skipped_steps;
-    return;
+    return false;
   }
-  LogStep step = input;
-  step.odometry_increment = pending_motion_;
+  Step& st = step_.emplace();
+  st.step = input;
+  st.step.odometry_increment = pending_motion_;
   pending_motion_ = Pose2D();
-  last_scan_ = step.scan;
-  const ScanPoints pts =
-      prepare_scan(step.scan, opt_.matcher.max_range, opt_.matcher.beam_skip,
-                   opt_.resolution);
+  last_scan_ = st.step.scan;
+  st.pts = prepare_scan(st.step.scan, opt_.matcher.max_range, opt_.matcher.beam_skip,
+                        opt_.resolution);
   // The lattice evaluates 27 poses per particle: it uses an evenly spread
   // subset of the beams, its log-likelihoods scaled back to the full count.
-  const ScanPoints lattice_pts = spread_subset(pts, opt_.lattice_beams);
-  const double lattice_scale =
-      lattice_pts.hit.empty() ? 1.0
-                              : static_cast<double>(pts.hit.size()) / lattice_pts.hit.size();
-  const uint64_t step_seed = mix_seed(opt_.seed ^ mix_seed(stats_.steps));
-  std::vector<char> fell_back(particles_.size(), 0);
-  std::vector<double> before(particles_.size());
-  for (size_t i = 0; i < particles_.size(); ++i) before[i] = particles_[i].log_weight;
-  pool_->parallel_for(particles_.size(), [&](size_t i) {
-    bool fb = false;
-    move_particle(i, step, pts, lattice_pts, lattice_scale,
-                  mix_seed(step_seed ^ (i * 0x632be59bd9b4e019ULL)), &fb);
-    fell_back[i] = fb;
-  });
-  for (char f : fell_back) stats_.odometry_fallbacks += (f != 0);
+  st.lattice_pts = spread_subset(st.pts, opt_.lattice_beams);
+  st.lattice_scale = st.lattice_pts.hit.empty()
+                         ? 1.0
+                         : static_cast<double>(st.pts.hit.size()) / st.lattice_pts.hit.size();
+  st.seed = mix_seed(opt_.seed ^ mix_seed(stats_.steps));
+  st.fell_back.assign(particles_.size(), 0);
+  st.before.resize(particles_.size());
+  for (size_t i = 0; i < particles_.size(); ++i) st.before[i] = particles_[i].log_weight;
+  return true;
+}
+
+size_t GridRbpf::pending_moves() const { return step_ ? particles_.size() : 0; }
+
+void GridRbpf::move(size_t i) {
+  Step& st = *step_;
+  bool fb = false;
+  move_particle(i, st.step, st.pts, st.lattice_pts, st.lattice_scale,
+                mix_seed(st.seed ^ (i * 0x632be59bd9b4e019ULL)), &fb);
+  st.fell_back[i] = fb;
+}
+
+void GridRbpf::end_step() {
+  if (!step_) return;
+  for (char f : step_->fell_back) stats_.odometry_fallbacks += (f != 0);
   std::vector<double> after(particles_.size());
   for (size_t i = 0; i < particles_.size(); ++i) after[i] = particles_[i].log_weight;
   // sum_i w_i exp(delta_i) with w the normalised weights before the step.
-  last_log_evidence_ = log_sum_exp(after) - log_sum_exp(before);
+  last_log_evidence_ = log_sum_exp(after) - log_sum_exp(step_->before);
+  step_.reset();
   resample_if_needed();
 }
 

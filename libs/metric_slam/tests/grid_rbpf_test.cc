@@ -63,6 +63,46 @@ TEST(GridRbpf, DeterministicWhateverTheThreadCount) {
   }
 }
 
+// The split step (what the hybrid filter runs for all its hypotheses in one
+// loop) is process() exactly, whatever order the particles move in.
+TEST(GridRbpf, SplitStepInAnyOrderIsProcess) {
+  const auto run = loop_run(13);
+  GridRbpf a(small_filter(1)), b(small_filter(1));
+  size_t moved_steps = 0;
+  for (const auto& st : run.log.steps) {
+    a.process(st);
+    if (b.begin_step(st)) {
+      ++moved_steps;
+      ASSERT_EQ(b.pending_moves(), b.particles().size());
+      for (size_t i = b.pending_moves(); i-- > 0;) b.move(i);
+      b.end_step();
+    } else {
+      EXPECT_EQ(b.pending_moves(), 0u);
+    }
+    ASSERT_EQ(a.last_log_evidence(), b.last_log_evidence());
+  }
+  EXPECT_GT(moved_steps, run.log.steps.size() / 2);
+  EXPECT_EQ(a.stats().resamplings, b.stats().resamplings);
+  ASSERT_EQ(a.particles().size(), b.particles().size());
+  for (size_t i = 0; i < a.particles().size(); ++i) {
+    const Particle& pa = a.particles()[i];
+    const Particle& pb = b.particles()[i];
+    EXPECT_EQ(pa.pose.x, pb.pose.x);
+    EXPECT_EQ(pa.pose.y, pb.pose.y);
+    EXPECT_EQ(pa.pose.theta, pb.pose.theta);
+    EXPECT_EQ(pa.log_weight, pb.log_weight);
+  }
+}
+
+TEST(GridRbpf, BeginStepTwiceIsAnError) {
+  const auto run = loop_run(14);
+  GridRbpf f(small_filter(1));
+  size_t k = 0;
+  while (k < run.log.steps.size() && !f.begin_step(run.log.steps[k])) ++k;
+  ASSERT_LT(k, run.log.steps.size());
+  EXPECT_THROW(f.begin_step(run.log.steps[k + 1]), Error);
+}
+
 TEST(GridRbpf, ParticlesShareMapMemory) {
   // Down a long corridor, each scan (8 m range) touches a short stretch of
   // the map: the particles' maps differ only there.

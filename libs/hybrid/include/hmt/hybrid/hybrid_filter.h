@@ -201,7 +201,11 @@ class HybridFilter {
   void forget_shared_history();
 
   HmtOptions opt_;
-  std::shared_ptr<metric_slam::WorkerPool> pool_;
+  std::shared_ptr<metric_slam::WorkerPool> pool_;  // metric SLAM's particles
+  // TSBI's candidates and TLCA's closures: a pool of its own, since in live
+  // mode those run beside metric SLAM, which must not wait for them. TSBI
+  // and TLCA take turns on it.
+  std::shared_ptr<metric_slam::WorkerPool> topology_pool_;
   area::OnlinePartitioner aam_;
   // Mutable: its cache of the areas' match fields is used and updated by
   // evaluate() alone (on the TSBI thread, in the framework).

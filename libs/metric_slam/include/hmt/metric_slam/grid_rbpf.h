@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "hmt/common/random.h"
@@ -68,6 +69,17 @@ class GridRbpf {
   // before the robot moved update_distance / update_angle since the last
   // filtered scan only extends the paths by odometry.
   void process(const LogStep& step);
+
+  // process() in three parts, so that one parallel loop can move the
+  // particles of several filters (the hybrid filter's hypotheses) without a
+  // barrier per filter: begin_step() does the bookkeeping and returns true
+  // if the particles must move; then move(i) for every i < pending_moves(),
+  // from any threads, each i once; then end_step() weighs and resamples.
+  // The result is process()'s, whatever the order of the moves.
+  bool begin_step(const LogStep& step);
+  size_t pending_moves() const;
+  void move(size_t i);
+  void end_step();
   // log p(z_t | z^{t-1}, u^t) as this filter estimates it for the last
   // process() call: the log of the weighted mean of the particles' weight
   // updates (0 when the scan was skipped). Summed over steps it is the
@@ -137,6 +149,16 @@ class GridRbpf {
   // Replaces the particles by `count` drawn from them by the weights `w`.
   void draw(const std::vector<double>& w, size_t count);
 
+  // A step between begin_step() and end_step().
+  struct Step {
+    LogStep step;  // with the odometry accumulated since the last filtered scan
+    ScanPoints pts, lattice_pts;
+    double lattice_scale = 1.0;
+    uint64_t seed = 0;            // the particles' streams derive from it
+    std::vector<char> fell_back;  // per particle: odometry proposal used
+    std::vector<double> before;   // log weights before the step
+  };
+
   RbpfOptions opt_;
   ScanMatcher matcher_;
   MotionModel motion_;
@@ -147,6 +169,7 @@ class GridRbpf {
   Pose2D pending_motion_;  // odometry since the last filtered scan
   RbpfStats stats_;
   double last_log_evidence_ = 0.0;
+  std::optional<Step> step_;  // between begin_step() and end_step()
 };
 
 }  // namespace hmt::metric_slam
