@@ -25,6 +25,12 @@ class FieldSum {
     ++matched_;
   }
   int matched() const { return matched_; }
+  // The best log-likelihood the whole scan can still reach after the first
+  // `beams` of them: the rest may cost nothing. Never above score()'s value
+  // (in floating point too: sums of non-negative terms only grow).
+  double bound(size_t beams, double inv_2sigma2) const {
+    return -(sum_d2_ + (static_cast<double>(beams) - matched_) * max_d2_) * inv_2sigma2;
+  }
   MatchScore score(size_t beams, double inv_2sigma2) const {
     MatchScore out;
     out.matched = matched_;
@@ -142,27 +148,36 @@ void ScanMatcher::for_each_match_in(const grid::OccupancyGrid& map, const Pose2D
              bits != 0; bits &= bits - 1)
           consider(r, __builtin_ctz(bits));
     }
-    if (best < std::numeric_limits<double>::infinity()) f(i, hx, hy, best, Point2D{bx, by});
+    if (best < std::numeric_limits<double>::infinity() && !f(i, hx, hy, best, Point2D{bx, by}))
+      return;
   }
 }
 
 MatchScore ScanMatcher::score(const grid::OccupancyGrid& map, const Pose2D& pose,
                               const ScanPoints& scan) const {
-  return score(map, pose, scan, opt_.window);
+  return score(map, pose, scan, opt_.window, -std::numeric_limits<double>::infinity());
 }
 
 MatchScore ScanMatcher::score(const grid::OccupancyGrid& map, const Pose2D& pose,
-                              const ScanPoints& scan, int w) const {
+                              const ScanPoints& scan, int w, double limit) const {
   FieldSum sum(map.resolution(), w);
-  for_each_match(map, pose, scan, w,
-                 [&](size_t, double, double, double d2, const Point2D&) { sum.add(d2); });
-  return sum.score(scan.hit.size(), inv_2sigma2_);
+  bool cut = false;
+  for_each_match(map, pose, scan, w, [&](size_t i, double, double, double d2, const Point2D&) {
+    sum.add(d2);
+    cut = sum.bound(i + 1, inv_2sigma2_) <= limit;
+    return !cut;
+  });
+  if (!cut) return sum.score(scan.hit.size(), inv_2sigma2_);
+  MatchScore out;  // cannot beat `limit`: the bound, itself at or below it
+  out.log_likelihood = std::numeric_limits<double>::lowest();
+  return out;
 }
 
 Pose2D ScanMatcher::hill_climb(const grid::OccupancyGrid& map, const Pose2D& start,
                                const ScanPoints& scan, int window) const {
   Pose2D best = start;
-  double best_ll = score(map, best, scan, window).log_likelihood;
+  double best_ll =
+      score(map, best, scan, window, -std::numeric_limits<double>::infinity()).log_likelihood;
   double ls = opt_.linear_step, as = opt_.angular_step;
   int refinement = 0;
   // Each move strictly raises the score; the cap guards against long walks
@@ -182,7 +197,8 @@ Pose2D ScanMatcher::hill_climb(const grid::OccupancyGrid& map, const Pose2D& sta
     double arg_ll = best_ll;
     for (int k = 0; k < 6; ++k) {
       if (k == came_from) continue;
-      const double ll = score(map, cand[k], scan, window).log_likelihood;
+      // Scored only as far as it can still beat the best so far.
+      const double ll = score(map, cand[k], scan, window, arg_ll).log_likelihood;
       if (ll > arg_ll) {
         arg = k;
         arg_ll = ll;
@@ -226,6 +242,7 @@ int ScanMatcher::normal_equations(const grid::OccupancyGrid& map,
                    gy += ry;
                    gt += jx * rx + jy * ry;
                    sum.add(d2);
+                   return true;
                  });
   const int n = sum.matched();
   *H << n, 0, hxt, 0, n, hyt, hxt, hyt, htt;

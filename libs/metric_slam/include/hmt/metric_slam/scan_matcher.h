@@ -69,8 +69,10 @@ class ScanMatcher {
   grid::LogOdds occupied_threshold() const { return occ_threshold_; }
 
  private:
+  // The score with window radius `window`; once the scan can no longer
+  // score above `limit`, it stops and returns the lowest log-likelihood.
   MatchScore score(const grid::OccupancyGrid& map, const Pose2D& pose,
-                   const ScanPoints& scan, int window) const;
+                   const ScanPoints& scan, int window, double limit) const;
   Pose2D hill_climb(const grid::OccupancyGrid& map, const Pose2D& start,
                     const ScanPoints& scan, int window) const;
   // J^T J and J^T r of the point-to-hit-mean residuals at `pose`, and the
@@ -82,8 +84,9 @@ class ScanMatcher {
   // few matches or a degenerate H leave the pose unconstrained.
   static bool gauss_newton_step(const Eigen::Matrix3d& H, const Eigen::Vector3d& g,
                                 int matched, Pose2D* pose);
-  // Calls f(i, hx, hy, mean) for every beam i whose end point (hx, hy) at
-  // `pose` has an obstacle in the window; `mean` is the nearest hit mean.
+  // Calls f(i, hx, hy, d2, mean) for every beam i, in order, whose end point
+  // (hx, hy) at `pose` has an obstacle in the window; `mean` is the nearest
+  // hit mean, d2 its squared distance. f returns false to stop.
   template <class F>
   void for_each_match(const grid::OccupancyGrid& map, const Pose2D& pose,
                       const ScanPoints& scan, int window, F&& f) const;
