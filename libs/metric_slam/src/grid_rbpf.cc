@@ -66,17 +66,23 @@ GridRbpf::Lattice GridRbpf::evaluate_lattice(const grid::OccupancyGrid& map,
   std::array<double, 27> logq, logw;
   std::array<Eigen::Vector3d, 27> offs;
   size_t j = 0;
-  for (int a = -1; a <= 1; ++a)
-    for (int y = -1; y <= 1; ++y)
-      for (int x = -1; x <= 1; ++x, ++j) {
-        const Pose2D xj(center.x + x * dl, center.y + y * dl,
-                        wrap_angle(center.theta + a * da));
-        const double ll = scale * matcher_.score(map, xj, pts).log_likelihood;
-        const double lm = log_norm_motion + motion_.log_density(from, u, xj);
+  for (int a = -1; a <= 1; ++a) {
+    // The nine translations of one heading are scored together.
+    Pose2D poses[9];
+    for (int y = -1, t = 0; y <= 1; ++y)
+      for (int x = -1; x <= 1; ++x, ++t)
+        poses[t] = Pose2D(center.x + x * dl, center.y + y * dl, wrap_angle(center.theta + a * da));
+    MatchScore scores[9];
+    matcher_.score_same_heading(map, poses, 9, pts, scores);
+    for (int y = -1, t = 0; y <= 1; ++y)
+      for (int x = -1; x <= 1; ++x, ++t, ++j) {
+        const double ll = scale * scores[t].log_likelihood;
+        const double lm = log_norm_motion + motion_.log_density(from, u, poses[t]);
         logq[j] = ll / opt_.proposal_gain + lm;
         logw[j] = ll / opt_.likelihood_gain + lm;
         offs[j] = Eigen::Vector3d(x * dl, y * dl, a * da);
       }
+  }
   Lattice out;
   const double log_q = log_sum_exp({logq.begin(), logq.end()});
   // eta = sum_j tau_j * (lattice cell volume)

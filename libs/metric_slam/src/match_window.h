@@ -115,4 +115,37 @@ uint32_t obstacle_bits(const grid::LogOdds* hit, const grid::LogOdds* probe,
   return m;
 }
 
+// Calls g(mx, my) with the hit mean of every obstacle in the window of
+// radius W around cell `hit` (probed through the same offsets around cell
+// `probe`), row by row, left to right.
+template <int W, class G>
+void for_each_obstacle(const grid::OccupancyGrid& map, grid::CellIndex hit,
+                       grid::CellIndex probe, grid::LogOdds threshold, G&& g) {
+  constexpr int kSide = 2 * W + 1;
+  const Window<W> hw(map, hit, true), pw(map, probe, false);
+  const double res = map.resolution(), k = res / grid::kHitScale;
+  auto visit = [&](int r, int col) {
+    const grid::HitMean h = hw.hit(r, col);
+    g((hit.x - W + col + 0.5) * res + h.hx * k,  // as OccupancyGrid::hit_mean()
+      (hit.y - W + r + 0.5) * res + h.hy * k);
+  };
+  if constexpr (kSide * kSide <= 64) {
+    // One word for the whole window: a single loop over its obstacles.
+    uint64_t bits = 0;
+#pragma GCC unroll 8
+    for (int r = 0; r < kSide; ++r)
+      bits |= static_cast<uint64_t>(obstacle_bits<kSide>(hw.logodds(r), pw.logodds(r), threshold))
+              << (r * kSide);
+    for (; bits != 0; bits &= bits - 1) {
+      const int b = __builtin_ctzll(bits);
+      visit(b / kSide, b % kSide);
+    }
+  } else {
+    for (int r = 0; r < kSide; ++r)
+      for (uint32_t bits = obstacle_bits<kSide>(hw.logodds(r), pw.logodds(r), threshold);
+           bits != 0; bits &= bits - 1)
+        visit(r, __builtin_ctz(bits));
+  }
+}
+
 }  // namespace hmt::metric_slam

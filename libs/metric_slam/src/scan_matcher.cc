@@ -104,9 +104,7 @@ template <int W, class F>
 void ScanMatcher::for_each_match_in(const grid::OccupancyGrid& map, const Pose2D& pose,
                                     const ScanPoints& scan, F& f) const {
   static_assert(W >= 0 && W <= kMaxWindow);
-  constexpr int kSide = 2 * W + 1;
   const double c = std::cos(pose.theta), s = std::sin(pose.theta);
-  const double res = map.resolution(), k = res / grid::kHitScale;
   const size_t n = scan.hit.size();
   for (size_t i = 0; i < n; ++i) {
     const Point2D& p = scan.hit[i];
@@ -114,40 +112,17 @@ void ScanMatcher::for_each_match_in(const grid::OccupancyGrid& map, const Pose2D
     const double hx = pose.x + c * p.x - s * p.y, hy = pose.y + s * p.x + c * p.y;
     const double fx = pose.x + c * q.x - s * q.y, fy = pose.y + s * q.x + c * q.y;
     const grid::CellIndex hc = map.cell_of(hx, hy), fc = map.cell_of(fx, fy);
-    const Window<W> hit(map, hc, true), probe(map, fc, false);
     double best = std::numeric_limits<double>::infinity();
     double bx = 0, by = 0;
-    // The nearest hit mean among the window's obstacles, visited row by row
-    // (the first one wins a tie).
-    auto consider = [&](int r, int col) {
-      const grid::HitMean h = hit.hit(r, col);
-      const double mx = (hc.x - W + col + 0.5) * res + h.hx * k;  // as hit_mean()
-      const double my = (hc.y - W + r + 0.5) * res + h.hy * k;
+    // The nearest hit mean (the first one wins a tie).
+    for_each_obstacle<W>(map, hc, fc, occ_threshold_, [&](double mx, double my) {
       const double d2 = (hx - mx) * (hx - mx) + (hy - my) * (hy - my);
       if (d2 < best) {
         best = d2;
         bx = mx;
         by = my;
       }
-    };
-    if constexpr (kSide * kSide <= 64) {
-      // One word for the whole window: a single loop over its obstacles.
-      uint64_t bits = 0;
-#pragma GCC unroll 8
-      for (int r = 0; r < kSide; ++r)
-        bits |= static_cast<uint64_t>(obstacle_bits<kSide>(hit.logodds(r), probe.logodds(r),
-                                                            occ_threshold_))
-                << (r * kSide);
-      for (; bits != 0; bits &= bits - 1) {
-        const int b = __builtin_ctzll(bits);
-        consider(b / kSide, b % kSide);
-      }
-    } else {
-      for (int r = 0; r < kSide; ++r)
-        for (uint32_t bits = obstacle_bits<kSide>(hit.logodds(r), probe.logodds(r), occ_threshold_);
-             bits != 0; bits &= bits - 1)
-          consider(r, __builtin_ctz(bits));
-    }
+    });
     if (best < std::numeric_limits<double>::infinity() && !f(i, hx, hy, best, Point2D{bx, by}))
       return;
   }
@@ -171,6 +146,82 @@ MatchScore ScanMatcher::score(const grid::OccupancyGrid& map, const Pose2D& pose
   MatchScore out;  // cannot beat `limit`: the bound, itself at or below it
   out.log_likelihood = std::numeric_limits<double>::lowest();
   return out;
+}
+
+void ScanMatcher::score_same_heading(const grid::OccupancyGrid& map, const Pose2D* poses,
+                                     size_t n, const ScanPoints& scan, MatchScore* out) const {
+  if (n == 0) return;
+  if (n > kMaxSameHeading)
+    throw Error(ExitCode::kInternal, "score_same_heading: more than 9 poses");
+  for (size_t k = 1; k < n; ++k)
+    if (poses[k].theta != poses[0].theta)
+      throw Error(ExitCode::kInternal, "score_same_heading: poses of different headings");
+  switch (opt_.window) {
+    case 0: return score_same_heading_in<0>(map, poses, n, scan, out);
+    case 1: return score_same_heading_in<1>(map, poses, n, scan, out);
+    case 2: return score_same_heading_in<2>(map, poses, n, scan, out);
+    case 3: return score_same_heading_in<3>(map, poses, n, scan, out);
+    case 4: return score_same_heading_in<4>(map, poses, n, scan, out);
+    case 5: return score_same_heading_in<5>(map, poses, n, scan, out);
+  }
+  throw Error(ExitCode::kInternal, "scan matcher: window outside [0, 5]");
+}
+
+template <int W>
+void ScanMatcher::score_same_heading_in(const grid::OccupancyGrid& map, const Pose2D* poses,
+                                        size_t n, const ScanPoints& scan,
+                                        MatchScore* out) const {
+  constexpr int kCells = (2 * W + 1) * (2 * W + 1);
+  // The obstacles (hit means, in window order) of one (end point, probe)
+  // cell pair, for the beam at hand.
+  struct Obstacles {
+    grid::CellIndex hit, probe;
+    int count = 0;
+    double mx[kCells], my[kCells];
+  };
+  Obstacles seen[kMaxSameHeading];
+  FieldSum sums[kMaxSameHeading] = {
+      {map.resolution(), W}, {map.resolution(), W}, {map.resolution(), W},
+      {map.resolution(), W}, {map.resolution(), W}, {map.resolution(), W},
+      {map.resolution(), W}, {map.resolution(), W}, {map.resolution(), W}};
+  const double c = std::cos(poses[0].theta), s = std::sin(poses[0].theta);
+  for (size_t i = 0; i < scan.hit.size(); ++i) {
+    const Point2D& p = scan.hit[i];
+    const Point2D& q = scan.free[i];
+    // The rotated beam, as for_each_match_in() sums it: (x + c px) - s py.
+    const double cpx = c * p.x, spy = s * p.y, spx = s * p.x, cpy = c * p.y;
+    const double cqx = c * q.x, sqy = s * q.y, sqx = s * q.x, cqy = c * q.y;
+    size_t known = 0;
+    for (size_t k = 0; k < n; ++k) {
+      const Pose2D& pose = poses[k];
+      const double hx = pose.x + cpx - spy, hy = pose.y + spx + cpy;
+      const double fx = pose.x + cqx - sqy, fy = pose.y + sqx + cqy;
+      const grid::CellIndex hc = map.cell_of(hx, hy), fc = map.cell_of(fx, fy);
+      const Obstacles* o = nullptr;
+      for (size_t j = 0; j < known && !o; ++j)
+        if (seen[j].hit.x == hc.x && seen[j].hit.y == hc.y && seen[j].probe.x == fc.x &&
+            seen[j].probe.y == fc.y)
+          o = &seen[j];
+      if (!o) {
+        Obstacles& fresh = seen[known++];
+        fresh.hit = hc;
+        fresh.probe = fc;
+        fresh.count = 0;
+        for_each_obstacle<W>(map, hc, fc, occ_threshold_, [&](double mx, double my) {
+          fresh.mx[fresh.count] = mx;
+          fresh.my[fresh.count] = my;
+          ++fresh.count;
+        });
+        o = &fresh;
+      }
+      if (o->count == 0) continue;
+      double best = std::numeric_limits<double>::infinity();
+      for (int j = 0; j < o->count; ++j)
+        best = std::min(best, (hx - o->mx[j]) * (hx - o->mx[j]) + (hy - o->my[j]) * (hy - o->my[j]));
+      sums[k].add(best);
+    }
+  }
+  for (size_t k = 0; k < n; ++k) out[k] = sums[k].score(scan.hit.size(), inv_2sigma2_);
 }
 
 Pose2D ScanMatcher::hill_climb(const grid::OccupancyGrid& map, const Pose2D& start,

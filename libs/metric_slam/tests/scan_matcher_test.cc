@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "hmt/common/error.h"
 #include "hmt/grid/scan_insertion.h"
 #include "sim_world.h"
 
@@ -44,14 +45,10 @@ TEST(ScanMatcher, EmptyMapExplainsNothing) {
   EXPECT_EQ(m.score(map, Pose2D(4, 3, 0), pts).matched, 0);
 }
 
-
-// score() against the likelihood field summed cell by cell through the
-// grid's public accessors, on a map whose windows cross tile boundaries,
-// reach unknown tiles and occupied cells of a tile without hit statistics,
-// for every window radius the options allow.
-TEST(ScanMatcher, ScoreIsTheFieldSummedCellByCell) {
-  grid::OccupancyGrid map(0.05);
-  Random rng(11);
+// A map whose windows cross tile boundaries, reach an unknown tile column
+// and occupied cells of a tile without hit statistics, and 400 beams that
+// end around it.
+void random_map_and_scan(grid::OccupancyGrid& map, ScanPoints& pts, Random& rng) {
   for (int y = -40; y < 40; ++y)
     for (int x = -40; x < 32; ++x) {  // x >= 32: an unknown tile column
       grid::Cell c;
@@ -65,12 +62,20 @@ TEST(ScanMatcher, ScoreIsTheFieldSummedCellByCell) {
       }
       map.set_cell({x, y}, c);
     }
-  ScanPoints pts;
   for (int i = 0; i < 400; ++i) {
     const double r = 0.3 + rng.uniform() * 1.8, a = rng.uniform() * 2 * M_PI;
     pts.hit.push_back({r * std::cos(a), r * std::sin(a)});
     pts.free.push_back({(r - 0.05) * std::cos(a), (r - 0.05) * std::sin(a)});
   }
+}
+
+// score() against the likelihood field summed cell by cell through the
+// grid's public accessors, for every window radius the options allow.
+TEST(ScanMatcher, ScoreIsTheFieldSummedCellByCell) {
+  grid::OccupancyGrid map(0.05);
+  ScanPoints pts;
+  Random rng(11);
+  random_map_and_scan(map, pts, rng);
   for (int w = 0; w <= kMaxWindow; ++w) {
     MatcherOptions opt;
     opt.window = w;
@@ -109,6 +114,37 @@ TEST(ScanMatcher, ScoreIsTheFieldSummedCellByCell) {
       ASSERT_EQ(got.matched, matched) << "window " << w << ", pose " << k;
       ASSERT_DOUBLE_EQ(got.log_likelihood, expected) << "window " << w << ", pose " << k;
     }
+  }
+}
+
+// The lattice's shared scoring of one heading's translations is score() of
+// each pose, to the bit, whatever the window.
+TEST(ScanMatcher, SameHeadingScoresAreScores) {
+  grid::OccupancyGrid map(0.05);
+  ScanPoints pts;
+  Random rng(12);
+  random_map_and_scan(map, pts, rng);
+  for (int w = 0; w <= kMaxWindow; ++w) {
+    MatcherOptions opt;
+    opt.window = w;
+    const ScanMatcher m(opt);
+    for (int k = 0; k < 5; ++k) {
+      const Pose2D centre(rng.uniform() * 0.6 - 0.3, rng.uniform() * 0.6 - 0.3,
+                          rng.uniform() * 2 * M_PI - M_PI);
+      Pose2D poses[9];
+      for (int t = 0; t < 9; ++t)  // steps below a cell: many share cells
+        poses[t] = Pose2D(centre.x + (t % 3 - 1) * 0.02, centre.y + (t / 3 - 1) * 0.02, centre.theta);
+      MatchScore got[9];
+      m.score_same_heading(map, poses, 9, pts, got);
+      for (int t = 0; t < 9; ++t) {
+        const MatchScore want = m.score(map, poses[t], pts);
+        ASSERT_EQ(got[t].matched, want.matched) << "window " << w << ", pose " << t;
+        ASSERT_EQ(got[t].log_likelihood, want.log_likelihood) << "window " << w << ", pose " << t;
+      }
+    }
+    Pose2D mixed[2] = {Pose2D(0, 0, 0), Pose2D(0, 0, 0.1)};
+    MatchScore out[2];
+    EXPECT_THROW(m.score_same_heading(map, mixed, 2, pts, out), Error);
   }
 }
 

@@ -53,6 +53,14 @@ class ScanMatcher {
   MatchScore score(const grid::OccupancyGrid& map, const Pose2D& pose,
                    const ScanPoints& scan) const;
 
+  // score() of up to kMaxSameHeading poses that share one heading (the
+  // proposal's lattice: 9 translations per heading), each to the bit. A
+  // beam whose end point and probe fall in the cells they fell in for an
+  // earlier pose reuses that pose's obstacles instead of reading the grid.
+  static constexpr size_t kMaxSameHeading = 9;
+  void score_same_heading(const grid::OccupancyGrid& map, const Pose2D* poses, size_t n,
+                          const ScanPoints& scan, MatchScore* out) const;
+
   // Hill climbing from `start` (GMapping-style: try +-x, +-y, +-theta, take
   // the best, halve the steps when nothing improves) on a subset of beams,
   // then Gauss-Newton on all beams against the matched cells' hit means.
@@ -90,6 +98,9 @@ class ScanMatcher {
   template <class F>
   void for_each_match(const grid::OccupancyGrid& map, const Pose2D& pose,
                       const ScanPoints& scan, int window, F&& f) const;
+  template <int W>
+  void score_same_heading_in(const grid::OccupancyGrid& map, const Pose2D* poses, size_t n,
+                             const ScanPoints& scan, MatchScore* out) const;
   template <int W, class F>
   void for_each_match_in(const grid::OccupancyGrid& map, const Pose2D& pose,
                          const ScanPoints& scan, F& f) const;
