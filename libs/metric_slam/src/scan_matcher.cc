@@ -45,6 +45,11 @@ class FieldSum {
   int matched_ = 0;
 };
 
+// A cell's two coordinates as one integer, to compare cells in one step.
+uint64_t cell_key(grid::CellIndex c) {
+  return static_cast<uint64_t>(static_cast<uint32_t>(c.x)) << 32 | static_cast<uint32_t>(c.y);
+}
+
 }  // namespace
 
 void MatcherOptions::load(Config& cfg, const std::string& s) {
@@ -175,7 +180,7 @@ void ScanMatcher::score_same_heading_in(const grid::OccupancyGrid& map, const Po
   // The obstacles (hit means, in window order) of one (end point, probe)
   // cell pair, for the beam at hand.
   struct Obstacles {
-    grid::CellIndex hit, probe;
+    uint64_t hit, probe;  // cell_key() of the end point's and the probe's cells
     int count = 0;
     double mx[kCells], my[kCells];
   };
@@ -197,15 +202,17 @@ void ScanMatcher::score_same_heading_in(const grid::OccupancyGrid& map, const Po
       const double hx = pose.x + cpx - spy, hy = pose.y + spx + cpy;
       const double fx = pose.x + cqx - sqy, fy = pose.y + sqx + cqy;
       const grid::CellIndex hc = map.cell_of(hx, hy), fc = map.cell_of(fx, fy);
+      const uint64_t hit_key = cell_key(hc), probe_key = cell_key(fc);
       const Obstacles* o = nullptr;
-      for (size_t j = 0; j < known && !o; ++j)
-        if (seen[j].hit.x == hc.x && seen[j].hit.y == hc.y && seen[j].probe.x == fc.x &&
-            seen[j].probe.y == fc.y)
+      for (size_t j = 0; j < known; ++j)
+        if ((seen[j].hit == hit_key) & (seen[j].probe == probe_key)) {  // one branch
           o = &seen[j];
+          break;
+        }
       if (!o) {
         Obstacles& fresh = seen[known++];
-        fresh.hit = hc;
-        fresh.probe = fc;
+        fresh.hit = hit_key;
+        fresh.probe = probe_key;
         fresh.count = 0;
         for_each_obstacle<W>(map, hc, fc, occ_threshold_, [&](double mx, double my) {
           fresh.mx[fresh.count] = mx;
