@@ -1,5 +1,7 @@
 #include "hmt/metric_slam/rbpf_options.h"
 
+#include <string>
+
 namespace hmt::metric_slam {
 
 void RbpfOptions::load(Config& cfg) {
@@ -42,6 +44,11 @@ void RbpfOptions::load(Config& cfg) {
           "in [0.005, 1] metres");
   insertion.load(cfg, "grid");
   matcher.load(cfg, "scan_matcher");
+  // Log-odds are clamped at p_clamp: a threshold at or above it is never
+  // reached, and every scan would fall back to odometry.
+  require(matcher.occupied_probability < insertion.p_clamp, "scan_matcher",
+          "occupied_probability", "below [grid] p_clamp (" + std::to_string(insertion.p_clamp) +
+                                      "), which no cell exceeds");
   motion.load(cfg, "motion_model");
 }
 

@@ -69,8 +69,9 @@ void MatcherOptions::load(Config& cfg, const std::string& s) {
   require(beam_skip >= 0, s, "beam_skip", ">= 0");
   require(window >= 0 && window <= kMaxWindow, s, "window", "in [0, 5]");
   require(sigma > 0, s, "sigma", "> 0");
-  require(occupied_probability > 0.5 && occupied_probability < 1, s,
-          "occupied_probability", "in (0.5, 1)");
+  // Above 0.998 the log-odds threshold would not fit the grid's one byte.
+  require(occupied_probability > 0.5 && occupied_probability <= 0.998, s,
+          "occupied_probability", "in (0.5, 0.998]");
   require(linear_step > 0, s, "linear_step", "> 0");
   require(angular_step > 0, s, "angular_step", "> 0");
   require(refinements >= 0 && refinements <= 20, s, "refinements", "in [0, 20]");

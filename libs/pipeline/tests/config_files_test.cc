@@ -67,5 +67,25 @@ TEST(ConfigFiles, OutOfRangeValueIsRejected) {
   EXPECT_THROW(load_job_options(cfg, ""), ConfigError);
 }
 
+// A matcher threshold the clamped log-odds never reach (or one past the
+// grid's byte) would leave every scan unmatched: an error, not a bad map.
+TEST(ConfigFiles, UnreachableObstacleThresholdIsRejected) {
+  for (const char* text : {"[scan_matcher]\noccupied_probability = 0.98\n",
+                           "[scan_matcher]\noccupied_probability = 0.999\n",
+                           "[grid]\np_clamp = 0.9\n[scan_matcher]\noccupied_probability = 0.9\n"}) {
+    SCOPED_TRACE(text);
+    Config cfg = Config::from_string(text, "bad.ini");
+    try {
+      load_job_options(cfg, "");
+      FAIL() << "expected ConfigError";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("occupied_probability"), std::string::npos) << e.what();
+    }
+  }
+  Config ok = Config::from_string(
+      "[grid]\np_clamp = 0.99\n[scan_matcher]\noccupied_probability = 0.98\n", "ok.ini");
+  EXPECT_NO_THROW(load_job_options(ok, ""));
+}
+
 }  // namespace
 }  // namespace hmt::pipeline
