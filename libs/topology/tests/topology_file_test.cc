@@ -300,6 +300,17 @@ void expect_input_error(const std::string& bytes, const std::string& needle) {
   }
 }
 
+// Expects decoding a run's map file (a session) to fail with an InputError
+// containing `needle`.
+void expect_session_error(const std::string& bytes, const std::string& needle) {
+  try {
+    decode_session(bytes, "x.bin");
+    ADD_FAILURE() << "no error; expected one containing '" << needle << "'";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
 // ------------------------------------------------------------ tests
 
 TEST(TopologyFile, RoundTripRestoresEverythingExactly) {
@@ -644,30 +655,22 @@ std::string minimal_session_payload() { return session_payload(1, 0); }
 TEST(SessionFile, BadFilesAreInputErrorsNamingTheProblem) {
   const Session s = sample_session();
   const std::string bytes = encode_session(s);
-  auto expect_error = [](const std::string& b, const std::string& needle) {
-    try {
-      decode_session(b, "x.bin");
-      ADD_FAILURE() << "no error for " << needle;
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    }
-  };
-  expect_error(bytes.substr(0, bytes.size() - 7), "truncated");
-  expect_error(bytes.substr(0, 20), "truncated");
-  expect_error("", "empty");
+  expect_session_error(bytes.substr(0, bytes.size() - 7), "truncated");
+  expect_session_error(bytes.substr(0, 20), "truncated");
+  expect_session_error("", "empty");
   // A topology file is not a map file of a run.
   const Fixture f = sample_topology();
-  expect_error(encode_topology(f.map, f.hypotheses), "not an HMT map file");
+  expect_session_error(encode_topology(f.map, f.hypotheses), "not an HMT map file");
   std::string flipped = bytes;
   flipped[bytes.size() / 2] ^= 0x10;
-  expect_error(flipped, "corrupt");
+  expect_session_error(flipped, "corrupt");
   // An area naming a map the file does not store (checksums valid).
-  expect_error(wrap(session_payload(0, 5), kSessionMagic, kSessionFormatVersion),
-               "map index 5 beyond the 0 maps stored");
+  expect_session_error(wrap(session_payload(0, 5), kSessionMagic, kSessionFormatVersion),
+                       "map index 5 beyond the 0 maps stored");
   // A hypothesis whose current area has no map cannot be continued.
   Session no_map = s;
   no_map.hypotheses[0].map = f.map;  // area 2 (current) not archived
-  expect_error(encode_session(no_map), "current area has no map");
+  expect_session_error(encode_session(no_map), "current area has no map");
 }
 
 TEST(SessionFile, ReadsVersionTwoFilesWithoutClosures) {
@@ -676,23 +679,10 @@ TEST(SessionFile, ReadsVersionTwoFilesWithoutClosures) {
   ASSERT_EQ(v2.hypotheses.size(), 1u);
   EXPECT_TRUE(v2.hypotheses[0].pending_closures.empty());
   // The same payload is short of its closure count in version 3...
-  try {
-    decode_session(wrap(p, kSessionMagic, 3), "v3.bin");
-    ADD_FAILURE() << "a version 3 file without its closure count was read";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("payload ends inside pending closures"),
-              std::string::npos)
-        << e.what();
-  }
+  expect_session_error(wrap(p, kSessionMagic, 3), "payload ends inside pending closures");
   // ... and a version this build does not know is refused, naming both.
-  try {
-    decode_session(wrap(p + std::string(4, '\0'), kSessionMagic, 4), "v4.bin");
-    ADD_FAILURE() << "a version 4 file was read";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("format version 4; this build reads version 2 to 3"),
-              std::string::npos)
-        << e.what();
-  }
+  expect_session_error(wrap(p + std::string(4, '\0'), kSessionMagic, 4),
+                       "format version 4; this build reads version 2 to 3");
 }
 
 TEST(SessionFile, BadPendingClosuresAreInputErrorsNamingThem) {
@@ -720,21 +710,14 @@ TEST(SessionFile, BadPendingClosuresAreInputErrorsNamingThem) {
   const Session ok = decode_session(with_closure(1, 0, 0.01, 1, 0, 1), "ok.bin");
   ASSERT_EQ(ok.hypotheses[0].pending_closures.size(), 1u);
   EXPECT_TRUE(ok.hypotheses[0].pending_closures[0].arc_before.has_value());
-  auto expect_error = [](const std::string& b, const std::string& needle) {
-    try {
-      decode_session(b, "x.bin");
-      ADD_FAILURE() << "no error for " << needle;
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    }
-  };
-  expect_error(with_closure(1, 9, 0.01, 0, 0, 0),
-               "hypothesis 0, closure 0: 1-9 are not two areas of its map");
-  expect_error(with_closure(1, 1, 0.01, 0, 0, 0), "1-1 are not two areas of its map");
-  expect_error(with_closure(1, 0, -1.0, 0, 0, 0), "measurement covariance is not");
-  expect_error(with_closure(1, 0, 0.01, 2, 0, 0), "bad arc flag");
-  expect_error(with_closure(1, 0, 0.01, 1, 1, 0), "closure 0: arc 1-0: areas not in ascending order");
-  expect_error(with_closure(1, 0, 0.01, 1, 0, 7), "its arc before joins other areas");
+  expect_session_error(with_closure(1, 9, 0.01, 0, 0, 0),
+                       "hypothesis 0, closure 0: 1-9 are not two areas of its map");
+  expect_session_error(with_closure(1, 1, 0.01, 0, 0, 0), "1-1 are not two areas of its map");
+  expect_session_error(with_closure(1, 0, -1.0, 0, 0, 0), "measurement covariance is not");
+  expect_session_error(with_closure(1, 0, 0.01, 2, 0, 0), "bad arc flag");
+  expect_session_error(with_closure(1, 0, 0.01, 1, 1, 0),
+                       "closure 0: arc 1-0: areas not in ascending order");
+  expect_session_error(with_closure(1, 0, 0.01, 1, 0, 7), "its arc before joins other areas");
 }
 
 }  // namespace
