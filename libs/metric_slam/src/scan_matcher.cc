@@ -18,6 +18,7 @@ namespace {
 // through it, so Gauss-Newton's scores are score()'s to the bit.
 class FieldSum {
  public:
+  FieldSum() = default;
   FieldSum(double resolution, int window)
       : max_d2_((window + 0.5) * (window + 0.5) * resolution * resolution) {}
   void add(double d2) {
@@ -25,22 +26,23 @@ class FieldSum {
     ++matched_;
   }
   int matched() const { return matched_; }
-  // The best log-likelihood the whole scan can still reach after the first
-  // `beams` of them: the rest may cost nothing. Never above score()'s value
-  // (in floating point too: sums of non-negative terms only grow).
+  // The log-likelihood of the first `beams` beams, those added among them
+  // matched. Over the whole scan it is the score; after part of it, the
+  // best the whole scan can still reach (the rest may cost nothing), never
+  // above the score in floating point either (sums of non-negative terms
+  // only grow).
   double bound(size_t beams, double inv_2sigma2) const {
     return -(sum_d2_ + (static_cast<double>(beams) - matched_) * max_d2_) * inv_2sigma2;
   }
   MatchScore score(size_t beams, double inv_2sigma2) const {
     MatchScore out;
     out.matched = matched_;
-    out.log_likelihood =
-        -(sum_d2_ + (static_cast<double>(beams) - matched_) * max_d2_) * inv_2sigma2;
+    out.log_likelihood = bound(beams, inv_2sigma2);
     return out;
   }
 
  private:
-  double max_d2_;
+  double max_d2_ = 0.0;
   double sum_d2_ = 0.0;
   int matched_ = 0;
 };
@@ -186,10 +188,8 @@ void ScanMatcher::score_same_heading_in(const grid::OccupancyGrid& map, const Po
     double mx[kCells], my[kCells];
   };
   Obstacles seen[kMaxSameHeading];
-  FieldSum sums[kMaxSameHeading] = {
-      {map.resolution(), W}, {map.resolution(), W}, {map.resolution(), W},
-      {map.resolution(), W}, {map.resolution(), W}, {map.resolution(), W},
-      {map.resolution(), W}, {map.resolution(), W}, {map.resolution(), W}};
+  FieldSum sums[kMaxSameHeading];
+  for (size_t k = 0; k < n; ++k) sums[k] = FieldSum(map.resolution(), W);
   const double c = std::cos(poses[0].theta), s = std::sin(poses[0].theta);
   for (size_t i = 0; i < scan.hit.size(); ++i) {
     const Point2D& p = scan.hit[i];
@@ -225,7 +225,8 @@ void ScanMatcher::score_same_heading_in(const grid::OccupancyGrid& map, const Po
       if (o->count == 0) continue;
       double best = std::numeric_limits<double>::infinity();
       for (int j = 0; j < o->count; ++j)
-        best = std::min(best, (hx - o->mx[j]) * (hx - o->mx[j]) + (hy - o->my[j]) * (hy - o->my[j]));
+        best = std::min(best,
+                        (hx - o->mx[j]) * (hx - o->mx[j]) + (hy - o->my[j]) * (hy - o->my[j]));
       sums[k].add(best);
     }
   }
