@@ -102,49 +102,6 @@ GridRbpf::Lattice GridRbpf::evaluate_lattice(const grid::OccupancyGrid& map,
   return out;
 }
 
-void GridRbpf::move_particle(size_t i, const LogStep& step, const ScanPoints& pts,
-                             const ScanPoints& lattice_pts, double lattice_scale,
-                             uint64_t stream_seed, bool* fallback) {
-  Particle& p = particles_[i];
-  Random rng(stream_seed);
-  const Pose2D& u = step.odometry_increment;
-  const size_t n = pts.hit.size();
-  *fallback = true;
-
-  if (opt_.proposal == ProposalKind::kOptimal && n > 0) {
-    MatchScore ms;
-    const Pose2D mode = matcher_.optimize(p.map, p.pose + u, pts, &ms);
-    if (ms.matched >= opt_.matcher.min_match_ratio * static_cast<double>(n)) {
-      const Lattice lat = evaluate_lattice(p.map, p.pose, u, lattice_pts, lattice_scale, mode);
-      if (lat.ok) {
-        const Eigen::Matrix3d L = lat.cov.llt().matrixL();
-        const Eigen::Vector3d z(rng.normal(), rng.normal(), rng.normal());
-        const Eigen::Vector3d d = lat.mean + L * z;
-        p.pose = Pose2D(mode.x + d.x(), mode.y + d.y(), wrap_angle(mode.theta + d.z()));
-        p.log_weight += lat.log_eta;
-        p.path_log_weight += lat.log_eta;
-        *fallback = false;
-      }
-    }
-  }
-  if (*fallback) {
-    // Odometry proposal. The weight is the same lattice estimate of the
-    // normaliser, taken around the sampled pose, so that particles on either
-    // proposal stay comparable.
-    const Pose2D from = p.pose;
-    p.pose = motion_.sample(from, u, rng);
-    if (n > 0) {
-      const Lattice lat = evaluate_lattice(p.map, from, u, lattice_pts, lattice_scale, p.pose);
-      if (lat.ok) {
-        p.log_weight += lat.log_eta;
-        p.path_log_weight += lat.log_eta;
-      }
-    }
-  }
-  p.path.push_back(p.pose);
-  maybe_insert(p, step.scan);
-}
-
 void GridRbpf::process(const LogStep& input) {
   if (!begin_step(input)) return;
   pool_->parallel_for(pending_moves(), [&](size_t i) { move(i); });
@@ -196,10 +153,48 @@ size_t GridRbpf::pending_moves() const { return step_ ? particles_.size() : 0; }
 
 void GridRbpf::move(size_t i) {
   Step& st = *step_;
-  bool fb = false;
-  move_particle(i, st.step, st.pts, st.lattice_pts, st.lattice_scale,
-                mix_seed(st.seed ^ (i * 0x632be59bd9b4e019ULL)), &fb);
-  st.fell_back[i] = fb;
+  const ScanPoints& pts = st.pts;
+  Particle& p = particles_[i];
+  Random rng(mix_seed(st.seed ^ (i * 0x632be59bd9b4e019ULL)));
+  const Pose2D& u = st.step.odometry_increment;
+  const size_t n = pts.hit.size();
+  bool fallback = true;
+
+  if (opt_.proposal == ProposalKind::kOptimal && n > 0) {
+    MatchScore ms;
+    const Pose2D mode = matcher_.optimize(p.map, p.pose + u, pts, &ms);
+    if (ms.matched >= opt_.matcher.min_match_ratio * static_cast<double>(n)) {
+      const Lattice lat =
+          evaluate_lattice(p.map, p.pose, u, st.lattice_pts, st.lattice_scale, mode);
+      if (lat.ok) {
+        const Eigen::Matrix3d L = lat.cov.llt().matrixL();
+        const Eigen::Vector3d z(rng.normal(), rng.normal(), rng.normal());
+        const Eigen::Vector3d d = lat.mean + L * z;
+        p.pose = Pose2D(mode.x + d.x(), mode.y + d.y(), wrap_angle(mode.theta + d.z()));
+        p.log_weight += lat.log_eta;
+        p.path_log_weight += lat.log_eta;
+        fallback = false;
+      }
+    }
+  }
+  if (fallback) {
+    // Odometry proposal. The weight is the same lattice estimate of the
+    // normaliser, taken around the sampled pose, so that particles on either
+    // proposal stay comparable.
+    const Pose2D from = p.pose;
+    p.pose = motion_.sample(from, u, rng);
+    if (n > 0) {
+      const Lattice lat =
+          evaluate_lattice(p.map, from, u, st.lattice_pts, st.lattice_scale, p.pose);
+      if (lat.ok) {
+        p.log_weight += lat.log_eta;
+        p.path_log_weight += lat.log_eta;
+      }
+    }
+  }
+  p.path.push_back(p.pose);
+  maybe_insert(p, st.step.scan);
+  st.fell_back[i] = fallback;
 }
 
 void GridRbpf::end_step() {

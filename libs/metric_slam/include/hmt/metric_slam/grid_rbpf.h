@@ -141,9 +141,6 @@ class GridRbpf {
                            const Pose2D& u, const ScanPoints& pts, double scale,
                            const Pose2D& center) const;
   void initialise(const LogStep& step);
-  void move_particle(size_t i, const LogStep& step, const ScanPoints& pts,
-                     const ScanPoints& lattice_pts, double lattice_scale,
-                     uint64_t stream_seed, bool* fallback);
   void maybe_insert(Particle& p, const LaserScan& scan);
   void resample_if_needed();
   // Replaces the particles by `count` drawn from them by the weights `w`.
