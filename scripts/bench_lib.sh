@@ -159,14 +159,28 @@ bench_ini_get() {
 # scripts/relation_error.py, or "FAIL (...)".
 bench_relation_cell() {
   local js
-  if ! js=$(python3 "$BENCH_REPO/scripts/relation_error.py" "$1" "$2" --json 2>&1); then
+  if ! js=$("${PYTHON:-/usr/bin/python3}" "$BENCH_REPO/scripts/relation_error.py" "$1" "$2" --json 2>&1); then
     echo "FAIL (${js##*$'\n'})"
     return 0
   fi
-  python3 -c '
+  "${PYTHON:-/usr/bin/python3}" -c '
 import json, sys
 r = json.loads(sys.argv[1])
 print("%.3f ± %.3f m, %.2f° (%d)" % (r["trans_mean_m"], r["trans_std_m"], r["rot_mean_deg"], r["count"]))' "$js"
+}
+
+# bench_ate_cell TRAJ REFERENCE: "0.097 (0.360)" (RMSE and max, metres) from
+# scripts/ate.py, or "FAIL (...)".
+bench_ate_cell() {
+  local js
+  if ! js=$("${PYTHON:-/usr/bin/python3}" "$BENCH_REPO/scripts/ate.py" "$1" "$2" --json 2>&1); then
+    echo "FAIL (${js##*$'\n'})"
+    return 0
+  fi
+  "${PYTHON:-/usr/bin/python3}" -c '
+import json, sys
+r = json.loads(sys.argv[1])
+print("%.3f (%.2f)" % (r["rmse_m"], r["max_m"]))' "$js"
 }
 
 # bench_machine: one line describing the machine.

@@ -3,7 +3,10 @@
 # (Debian mrpt-apps) with its gridmapping_optimal_sampling.ini, on the same
 # logs and the same particle count. Per log: wall time and peak RSS of both
 # (GNU time -v), the ratios MRPT/ours, and, for logs with ground-truth
-# relations (intel), the relation error (Kuemmerle et al. 2009) of both.
+# relations (intel), the relation error (Kuemmerle et al. 2009) of both;
+# for logs with a reference trajectory (NAME.reference.txt.gz), the position
+# RMSE of both against it (scripts/ate.py); with MODE=run, our areas and
+# accepted loop closures (summary.json).
 #
 # Ours reads config/NAME.ini when the log has one (its tuned [area] tau),
 # config/default.ini otherwise. Runs are strictly sequential (one heavy
@@ -46,6 +49,7 @@
 #   TABLE       file name of the table in OUT_DIR [metric.md]
 #   TITLE       the table's heading [Metric SLAM: hmt-slam vs MRPT rbpf-slam]
 #   RECONVERT=1 convert the CARMEN logs again even if cached
+#   PYTHON      the Python 3 with numpy the scripts run with [/usr/bin/python3]
 #
 # Exit status: 0 when every run succeeded, 1 when a row says FAIL (the table is
 # written anyway) or on a usage / set-up error.
@@ -74,6 +78,8 @@ CONFIG=${CONFIG:-}
 MRPT_UPDATES=${MRPT_UPDATES:-matched}
 TABLE=${TABLE:-metric.md}
 TITLE=${TITLE:-Metric SLAM: hmt-slam vs MRPT rbpf-slam}
+PYTHON=${PYTHON:-/usr/bin/python3}
+export PYTHON
 
 # ---------------------------------------------------------------- checks
 [[ "$MODE" == run || "$MODE" == metric ]] || bench_die "MODE must be 'run' or 'metric', not '$MODE'"
@@ -86,12 +92,12 @@ TITLE=${TITLE:-Metric SLAM: hmt-slam vs MRPT rbpf-slam}
 [[ -n "${LOGS// /}" ]] || bench_die "LOGS is empty"
 [[ -x /usr/bin/time ]] || bench_die "/usr/bin/time (GNU time) not found: apt-get install time"
 bench_need_tool timeout
-bench_need_tool python3
+bench_need_tool "$PYTHON" "Debian package python3"
 bench_need_tool "$RBPF_SLAM" "Debian package mrpt-apps"
 bench_need_tool "$HMT_SLAM" "build it with scripts/build.sh"
 [[ -r "$MRPT_INI" ]] || bench_die "MRPT config $MRPT_INI not found (Debian package mrpt-common)"
 [[ -z "$CONFIG" || -r "$CONFIG" ]] || bench_die "$CONFIG not found"
-for f in relation_error.py bench/mrpt_path.py; do
+for f in relation_error.py ate.py bench/mrpt_path.py; do
   [[ -r "$BENCH_REPO/scripts/$f" ]] || bench_die "scripts/$f not found"
 done
 mkdir -p "$OUT_DIR" "$CACHE_DIR" "$WORK_DIR" || bench_die "cannot create the output folders"
@@ -148,6 +154,11 @@ run_ours() {
   OURS_TRAJ=$d/out/trajectory.tum
   [[ -s $OURS_TRAJ ]] || { ERR="no trajectory.tum"; return 1; }
   OURS_SCANS=$(grep -cv '^[[:space:]]*\(#\|$\)' "$OURS_TRAJ" || true)
+  if [[ $MODE == run ]]; then
+    read -r OURS_AREAS OURS_CLOSURES < <("$PYTHON" -c 'import json, sys
+j = json.load(open(sys.argv[1]))
+print(j["areas"], j["loop_closures_accepted"])' "$d/out/summary.json" 2>/dev/null || echo "- -")
+  fi
 }
 
 # mrpt_ini OUTDIR FILE: MRPT's ini with every file-writing or window
@@ -196,7 +207,7 @@ matched_updates() {
     ours[$k]=$v
   done
   # Angles in degrees; six significant digits are exact enough for both.
-  read -r lin ang ins_lin ins_ang < <(python3 -c 'import math, sys
+  read -r lin ang ins_lin ins_ang < <("$PYTHON" -c 'import math, sys
 u, ua, m, ma = map(float, sys.argv[1:])
 print("%.6g %.6g %.6g %.6g" % (u, math.degrees(ua), m, math.degrees(ma)))' \
     "${ours[update_distance]}" "${ours[update_angle]}" \
@@ -228,8 +239,8 @@ run_mrpt() {
   MRPT_WALL=$BENCH_WALL MRPT_CPU=$BENCH_CPU MRPT_RSS=$BENCH_RSS
   MRPT_TRAJ=$d/trajectory.tum
   MRPT_MEAN_TRAJ=$d/trajectory_mean.tum
-  if ! python3 "$BENCH_REPO/scripts/bench/mrpt_path.py" "$d/out" --localize "$lin" "$ang" >"$MRPT_TRAJ" 2>"$d/path.err" ||
-     ! python3 "$BENCH_REPO/scripts/bench/mrpt_path.py" "$d/out" --mean >"$MRPT_MEAN_TRAJ" 2>>"$d/path.err"; then
+  if ! "$PYTHON" "$BENCH_REPO/scripts/bench/mrpt_path.py" "$d/out" --localize "$lin" "$ang" >"$MRPT_TRAJ" 2>"$d/path.err" ||
+     ! "$PYTHON" "$BENCH_REPO/scripts/bench/mrpt_path.py" "$d/out" --mean >"$MRPT_MEAN_TRAJ" 2>>"$d/path.err"; then
     ERR="no trajectory: $(tail -n 1 "$d/path.err")"
     return 1
   fi
@@ -256,13 +267,13 @@ SCAN_NOTE=0
 FAILED=0
 for name in $LOGS; do
   mkdir -p "$WORK_DIR/$name"
-  OURS_WALL=- OURS_CPU=- OURS_RSS=- OURS_SCANS=- OURS_TRAJ=''
+  OURS_WALL=- OURS_CPU=- OURS_RSS=- OURS_SCANS=- OURS_TRAJ='' OURS_AREAS=- OURS_CLOSURES=-
   MRPT_WALL=- MRPT_CPU=- MRPT_RSS=- MRPT_SCANS=- MRPT_TRAJ='' MRPT_MEAN_TRAJ=''
-  status=() ours_rel=- mrpt_rel=-
+  status=() ours_rel=- mrpt_rel=- ours_ate=- mrpt_ate=-
   if ! log_input "$name"; then
     bench_log "$name: FAIL: $ERR"
     FAILED=1
-    ROWS+=("| $name | - | - | - | - | - | - | - | - | - | - | - | - | FAIL: $ERR |")
+    ROWS+=("| $name | - | - | - | - | - | - | - | - | - | - | - | - | - | - | - | - | - | FAIL: $ERR |")
     continue
   fi
   if ! run_ours "$name"; then status+=("ours FAIL: $ERR"); bench_log "$name: ours FAIL: $ERR"; fi
@@ -274,6 +285,11 @@ for name in $LOGS; do
     [[ -n $MRPT_TRAJ ]] && mrpt_rel=$(bench_relation_cell "$MRPT_TRAJ" "$rel")
     [[ -n $MRPT_MEAN_TRAJ ]] &&
       NOTES+=("- $name: MRPT's on-line mean estimate (log_estimated_path.txt, not smoothed) scores $(bench_relation_cell "$MRPT_MEAN_TRAJ" "$rel").")
+  fi
+  ref=$DATASETS/carmen/$name.reference.txt.gz
+  if [[ -r $ref ]]; then
+    [[ -n $OURS_TRAJ ]] && ours_ate=$(bench_ate_cell "$OURS_TRAJ" "$ref")
+    [[ -n $MRPT_TRAJ ]] && mrpt_ate=$(bench_ate_cell "$MRPT_TRAJ" "$ref")
   fi
   # Keep the trajectories next to the table.
   mkdir -p "$OUT_DIR/$name"
@@ -287,7 +303,7 @@ for name in $LOGS; do
     SCAN_NOTE=1
   fi
   if [[ ${#status[@]} -eq 0 ]]; then status=(ok); else FAILED=1; fi
-  ROWS+=("| $name | $(basename "$(config_for "$name")") | $scans | $OURS_WALL | $MRPT_WALL | $(bench_ratio "$MRPT_WALL" "$OURS_WALL") | $OURS_CPU | $MRPT_CPU | $OURS_RSS | $MRPT_RSS | $(bench_ratio "$MRPT_RSS" "$OURS_RSS") | $ours_rel | $mrpt_rel | $(join_status) |")
+  ROWS+=("| $name | $(basename "$(config_for "$name")") | $scans | $OURS_WALL | $MRPT_WALL | $(bench_ratio "$MRPT_WALL" "$OURS_WALL") | $OURS_CPU | $MRPT_CPU | $OURS_RSS | $MRPT_RSS | $(bench_ratio "$MRPT_RSS" "$OURS_RSS") | $OURS_AREAS | $OURS_CLOSURES | $ours_ate | $mrpt_ate | $ours_rel | $mrpt_rel | $(join_status) |")
 done
 
 LOAD_END=$(bench_load)
@@ -307,10 +323,11 @@ report() {
   echo "- both read the same rawlog (CARMEN logs converted once by \`hmt-slam convert --format sf\`)"
   echo "- wall time, CPU time (user + system, all threads) and peak RSS from GNU \`time -v\` of the whole process (reading the log and writing the map included); fastest of $REPEAT run(s) each"
   echo
-  echo "| log | our config | scans | ours wall (s) | MRPT wall (s) | MRPT/ours time | ours CPU (s) | MRPT CPU (s) | ours peak RSS (MB) | MRPT peak RSS (MB) | MRPT/ours RSS | ours relation error | MRPT relation error | status |"
-  echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|"
+  echo "| log | our config | scans | ours wall (s) | MRPT wall (s) | MRPT/ours time | ours CPU (s) | MRPT CPU (s) | ours peak RSS (MB) | MRPT peak RSS (MB) | MRPT/ours RSS | areas | closures | ours ATE | MRPT ATE | ours relation error | MRPT relation error | status |"
+  echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|---|"
   printf '%s\n' "${ROWS[@]}"
   echo
+  echo "ATE: position RMSE (max) in metres against \`carmen/NAME.reference.txt.gz\` (a GMapping trajectory, not ground truth) after the best rigid 2D alignment, scans matched by index (scripts/ate.py); \"-\" where a log has none. Areas and closures: ours (summary.json), with MODE=run."
   echo "Relation error: translational mean ± std, rotational mean (number of relations), against \`relations/NAME.relations\`; \"-\" where a log has none. GMapping's reference trajectory scores 0.099 ± 0.121 m, 2.32° (144) on intel."
   echo "MRPT's trajectory is its final most likely particle's path (most_likely_path.txt, one pose per filter update: rbpf-slam updates only after $MRPT_UPDATE of odometry with this ini) expanded to every scan by odometry and matched to the scans by the timestamps of log_estimated_path.txt; it comes from files rbpf-slam always writes, so the timed run is the only run."
   echo "MRPT's odometry noise is not in its ini: it is the motion model stored in the rawlog's actions (\`hmt-slam convert\` writes MRPT's default CActionRobotMovement2D Gaussian model; the Malaga log has its own)."

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "hmt/area/area_size.h"
 #include "hmt/common/config.h"
 #include "hmt/common/error.h"
 #include "hmt/io/log_reader.h"
@@ -40,6 +41,9 @@ int run(const std::string& config_path, const std::string& input,
   const hmt::Log log = opt.input.select(hmt::io::read_log(opt.input.log));
   std::fprintf(stderr, "hmt-slam: %zu scans; %d particles\n", log.steps.size(),
                opt.rbpf.particles);
+  if (hmt::area::resolve_tau(opt.area, log))
+    std::fprintf(stderr, "hmt-slam: [area] tau = auto: %.3f from the laser's field of view\n",
+                 opt.area.partition.tau);
   if (hybrid) {
     const auto sum = hmt::pipeline::run_hmt_job(opt, log, cfg, out_dir, !quiet, session.get());
     std::printf("processed %zu scans in %.2f s (peak memory %.1f MB)\n", sum.scans,

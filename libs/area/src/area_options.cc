@@ -39,7 +39,14 @@ void AreaOptions::load(Config& cfg, const std::string& s) {
   sso.gate = cfg.get_double(s, "gate", sso.gate);
   sso.descriptor_threshold =
       cfg.get_double(s, "descriptor_threshold", sso.descriptor_threshold);
-  partition.tau = cfg.get_double(s, "tau", partition.tau);
+  // tau: a number, or "auto" (derived from the sensor, area_size.h).
+  if (cfg.has(s, "tau") ? cfg.get_string(s, "tau", "") == "auto" : partition.tau_from_sensor) {
+    partition.tau_from_sensor = true;
+    cfg.get_string(s, "tau", "auto");  // recorded in the effective configuration
+  } else {
+    partition.tau_from_sensor = false;
+    partition.tau = cfg.get_double(s, "tau", partition.tau);
+  }
   partition.min_cluster_size =
       cfg.get_int(s, "min_cluster_size", partition.min_cluster_size);
   partition.split_method = parse_split_method(

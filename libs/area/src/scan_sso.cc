@@ -42,6 +42,14 @@ PreparedScan::PreparedScan(const LaserScan& scan, const SsoOptions& options) {
     covs_.push_back(c);
     max_var_ = std::max(max_var_, max_eigenvalue(c));
   }
+  // The range-bearing covariance's eigenvalues are range_std^2 and
+  // (r bearing_std)^2, plus (r beta)^2: at most floor + k r^2. k is taken
+  // as the largest ratio actually present, so the bound holds exactly.
+  var_floor_ = options.range_std * options.range_std;
+  for (size_t i = 0; i < covs_.size(); ++i)
+    var_per_range2_ = std::max(var_per_range2_, (max_eigenvalue(covs_[i]) - var_floor_) /
+                                                    (ranges_[i] * ranges_[i]));
+  origin_ = {scan.sensor_pose.x, scan.sensor_pose.y};
   grid_ = PointGrid(points_, 2.0 * options.delta);
 }
 
@@ -66,9 +74,22 @@ double scan_match_ratio(const PreparedScan& a, const PoseGaussian& pose_a,
       // No point of B farther than this can pass the gate: d^2 >= |d|^2 /
       // lambda_max(Cp + Cb) and lambda_max(Cp + Cb) <= lambda_max(Cp) +
       // max_j lambda_max(Cb_j).
-      const double radius =
-          std::sqrt(options.gate *
-                    (max_eigenvalue(Cp) + b.max_point_var() + kVarianceFloor));
+      const double lp = max_eigenvalue(Cp) + kVarianceFloor;
+      double radius = std::sqrt(options.gate * (lp + b.max_point_var()));
+      // Tighter, by range: a point of B at distance |d| from p lies at most
+      // rho + |d| from B's sensor (rho = |p - sensor|), so lambda_max(Cb)
+      // <= c0 + k (rho + |d|)^2, and |d|^2 / (lp + c0 + k (rho + |d|)^2)
+      // grows with |d|: the gate fails beyond the root R of
+      //   R^2 = gate (lp + c0 + k (rho + R)^2).
+      const double g = options.gate, k = b.var_per_range2();
+      if (g * k < 1.0) {
+        const double rho = std::hypot(p.x - b.sensor_origin().x, p.y - b.sensor_origin().y);
+        const double a0 = lp + b.var_floor();
+        const double bh = g * k * rho;
+        const double R =
+            (bh + std::sqrt(bh * bh + (1.0 - g * k) * g * (a0 + k * rho * rho))) / (1.0 - g * k);
+        radius = std::min(radius, R);
+      }
       const double r2 = radius * radius;
       const bool hit =
           b.grid().any_near(p, radius, [&](const Point2D& bp, uint32_t j) {

@@ -47,7 +47,9 @@ TEST(area_Options, DefaultsAreRecordedInTheEffectiveConfig) {
     EXPECT_NE(ini.find(std::string(key) + " = "), std::string::npos) << key;
   EXPECT_NE(ini.find("[aam]"), std::string::npos);
   EXPECT_NE(ini.find("split_method = mean"), std::string::npos);
-  EXPECT_DOUBLE_EQ(o.partition.tau, 1.0);
+  // tau's default is derived from the sensor once the log is read.
+  EXPECT_TRUE(o.partition.tau_from_sensor);
+  EXPECT_NE(ini.find("tau = auto"), std::string::npos);
 }
 
 TEST(area_Options, OutOfRangeValuesAreConfigErrors) {

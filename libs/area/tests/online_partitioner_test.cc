@@ -127,6 +127,8 @@ TEST(area_OnlinePartitioner, StayIncludesKeyframesThatLeftTheWindow) {
   // including the keyframes that slid out of the window.
   const auto kfs = sim::three_rooms_walk();
   AreaOptions o;
+  o.sso.use_probabilistic = false;  // the fixed delta this walk was laid out for
+  o.partition.tau_from_sensor = false;
   o.partition.tau = 0.7;
   o.partition.split_method = SplitMethod::kSweep;
   o.window_size = 30;

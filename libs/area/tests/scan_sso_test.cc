@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "hmt/area/pose_gaussian.h"
 #include "hmt/area/sso.h"
 #include "hmt/common/random.h"
 #include "sim_world.h"
@@ -75,6 +76,7 @@ TEST(area_ScanSso, MatchesABruteForceReferenceAndIsSymmetric) {
   // in the world frame only.
   Random rng(2);
   SsoOptions o;
+  o.use_probabilistic = false;  // the reference implements the fixed delta
   o.delta = 0.25;
   for (int k = 0; k < 30; ++k) {
     const LaserScan a = random_scan(rng), b = random_scan(rng);
@@ -87,6 +89,52 @@ TEST(area_ScanSso, MatchesABruteForceReferenceAndIsSymmetric) {
     EXPECT_NEAR(s_ab, brute_force_sso(a, pa, b, pb, o.delta), 1e-12);
     EXPECT_GE(s_ab, 0.0);
     EXPECT_LE(s_ab, 1.0);
+  }
+}
+
+// Reference for the probabilistic test: every pair of points, no search
+// radius, the same Mahalanobis gate.
+double brute_force_ratio_probabilistic(const PreparedScan& a, const PoseGaussian& pa,
+                                       const PreparedScan& b, const PoseGaussian& pb,
+                                       const SsoOptions& o) {
+  const PoseGaussian q = relative_pose(pa, pb);
+  size_t m = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const Point2D p = q.mean.transform(a.points()[i]);
+    Eigen::Matrix2d Cp = compose_point_cov(q, a.points()[i], a.point_covs()[i]);
+    Cp.diagonal().array() += kVarianceFloor;
+    for (size_t j = 0; j < b.size(); ++j) {
+      const Eigen::Vector2d d(p.x - b.points()[j].x, p.y - b.points()[j].y);
+      if (mahalanobis2(d, Cp + b.point_covs()[j]) <= o.gate) {
+        ++m;
+        break;
+      }
+    }
+  }
+  return a.empty() ? 0.0 : static_cast<double>(m) / static_cast<double>(a.size());
+}
+
+TEST(area_ScanSso, ProbabilisticMatchesABruteForceReference) {
+  // The search radius is bounded by each query point's range (long beams
+  // have wide sampling covariances, short ones narrow): the pruning must
+  // never drop a pair the gate accepts. Far ranges, bearing noise and pose
+  // uncertainty make the covariances differ widely.
+  Random rng(5);
+  SsoOptions o;
+  o.use_probabilistic = true;
+  o.bearing_std = 0.002;
+  for (int k = 0; k < 20; ++k) {
+    LaserScan a = random_scan(rng), b = random_scan(rng);
+    for (float& r : b.ranges) r *= 3.0f;
+    const PreparedScan A(a, o), B(b, o);
+    PoseGaussian pa(Pose2D(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-3, 3)));
+    PoseGaussian pb(pa.mean + Pose2D(rng.uniform(-1, 1), rng.uniform(-1, 1),
+                                     rng.uniform(-0.5, 0.5)));
+    if (k % 2) pb.cov.diagonal() << 0.01, 0.02, 1e-3;
+    EXPECT_DOUBLE_EQ(scan_match_ratio(A, pa, B, pb, o),
+                     brute_force_ratio_probabilistic(A, pa, B, pb, o));
+    EXPECT_DOUBLE_EQ(scan_match_ratio(B, pb, A, pa, o),
+                     brute_force_ratio_probabilistic(B, pb, A, pa, o));
   }
 }
 
@@ -168,6 +216,7 @@ TEST(area_ScanSso, ProbabilisticTestAbsorbsPoseUncertainty) {
                   s2 = sim::raycast(w, p2, sensor);
   const Pose2D p2_wrong = p2 + Pose2D(0.3, 0.0, 0.0);
   SsoOptions fixed;
+  fixed.use_probabilistic = false;
   fixed.delta = 0.1;
   const double exact = scan_sso(s1, p1, s2, p2, fixed);
   const double off = scan_sso(s1, p1, s2, p2_wrong, fixed);

@@ -8,6 +8,7 @@ namespace {
 TEST(experiments_FieldOfView, NarrowerSensorMoreAreasOnASmallRoute) {
   FovOptions o;
   o.taus = {1.0};
+  o.area.sso.use_probabilistic = false;  // the fixed delta of 001 Eq. 16
   const auto poses = route_poses(two_rooms_route(), o.step, o.turn_step);
   const auto results = run_field_of_view(two_rooms(), poses, standard_sensors(20.0), o);
   ASSERT_EQ(results.size(), 3u);

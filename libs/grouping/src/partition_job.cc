@@ -7,6 +7,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "hmt/area/area_size.h"
 #include "hmt/area/offline_grouping.h"
 #include "hmt/area/partition.h"
 #include "hmt/area/scan_sso.h"
@@ -280,14 +281,16 @@ double write_partition_outputs(const Log& log, const GroupedLog& g,
   return since(t0);
 }
 
-PartitionSummary run_partition(const PartitionJobOptions& opt,
+PartitionSummary run_partition(const PartitionJobOptions& options,
                                const PartitionRequest& req) {
   const auto t0 = Clock::now();
+  PartitionJobOptions opt = options;
   make_directories(req.out_dir);
   write_text_atomically(req.out_dir + "/config_effective.ini", req.effective_config);
 
   auto t = Clock::now();
   const Log log = io::read_log(req.log_path);
+  area::resolve_tau(opt.area, log);  // tau = auto: from the sensor's field of view
   const double read_s = since(t);
   t = Clock::now();
   ScanPoses poses =

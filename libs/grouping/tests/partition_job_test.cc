@@ -46,6 +46,10 @@ PartitionJobOptions options(bool refine) {
   o.grouping.keyframe_distance = 0.0;  // every scan (they are 0.3 m apart)
   o.grouping.keyframe_angle = 0.0;
   o.grouping.refine_local_maps = refine;
+  // The fixed-delta SSO and the papers' tau = 1 these rooms were laid out for.
+  o.area.sso.use_probabilistic = false;
+  o.area.partition.tau_from_sensor = false;
+  o.area.partition.tau = 1.0;
   return o;
 }
 

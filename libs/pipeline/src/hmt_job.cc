@@ -135,6 +135,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   nlohmann::json j = run_summary(system);
   j["input"] = log.source;
   j["particles"] = opt.rbpf.particles;
+  j["area_tau"] = opt.area.partition.tau;
   j["peak_map_memory_mb"] = peak_map_bytes / kMB;
   j["framework_mode"] =
       opt.framework.mode == framework::Mode::kLive ? "live" : "deterministic";

@@ -31,8 +31,9 @@ struct SsoOptions {
   // Point-match tolerance delta [m] (001 Eq. 16): a point of one scan is
   // matched if a point of the other scan lies within delta.
   double delta = 0.20;
-  // Use the Mahalanobis test of 000 Eq. 16 instead of the fixed delta.
-  bool use_probabilistic = false;
+  // Use the Mahalanobis test of 000 Eq. 16 instead of the fixed delta (the
+  // default: its tolerance follows the beam spacing, see area_size.h).
+  bool use_probabilistic = true;
   // Sampling term sigma_f = r * beta [rad] (000 Eq. 16). 0 takes each scan's
   // own angular step, which is what the paper suggests ("of the order of the
   // discrete angular steps").
@@ -50,8 +51,12 @@ struct SsoOptions {
 
 struct PartitionOptions {
   // A bisection is accepted while its Ncut < tau (000 Table 1). tau = 1 is the
-  // parameter-free choice of 001 Eq. 12-13; tau = 0 never splits.
-  double tau = 1.0;
+  // parameter-free choice of 001 Eq. 12-13; tau = 0 never splits. 0.5 is
+  // what the rule of area_size.h gives a 180 degree laser.
+  double tau = 0.5;
+  // `tau = auto` in the configuration (the default): tau is derived from the
+  // sensor's field of view when the log is read (area_size.h, resolve_tau).
+  bool tau_from_sensor = true;
   // Neither side of an accepted bisection may have fewer nodes.
   int min_cluster_size = 1;
   SplitMethod split_method = SplitMethod::kMean;

@@ -46,6 +46,14 @@ class PreparedScan {
   const std::vector<Eigen::Matrix2d>& point_covs() const { return covs_; }
   // Largest eigenvalue over point_covs() (bounds the search radius).
   double max_point_var() const { return max_var_; }
+  // A tighter bound by range: every point j at range r_j from the sensor has
+  // lambda_max(point_covs()[j]) <= var_floor() + var_per_range2() * r_j^2
+  // (the sampling term r beta and the bearing noise grow with range), so a
+  // point near a query close to the sensor needs only a small search radius.
+  double var_floor() const { return var_floor_; }
+  double var_per_range2() const { return var_per_range2_; }
+  // The sensor's position in the robot frame.
+  const Point2D& sensor_origin() const { return origin_; }
   const PointGrid& grid() const { return grid_; }
 
  private:
@@ -53,6 +61,8 @@ class PreparedScan {
   std::vector<double> ranges_;
   std::vector<Eigen::Matrix2d> covs_;
   double max_var_ = 0.0;
+  double var_floor_ = 0.0, var_per_range2_ = 0.0;
+  Point2D origin_;
   PointGrid grid_;
 };
 

@@ -1,0 +1,96 @@
+#!/usr/bin/python3
+"""Absolute trajectory error against a reference trajectory.
+
+Position RMSE (and maximum) after the best rigid 2D alignment (rotation +
+translation, no scale: Umeyama / Kabsch on the positions) of the estimate
+to the reference, poses matched by index (one line per scan in both) or,
+when the two differ in length (a tool that dropped a scan), by timestamp
+(nearest within 0.01 s; the unmatched are left out and counted). The
+references shipped with the datasets are GMapping trajectories, good to a
+few centimetres: this says "is the map roughly right", not ground truth.
+
+Usage: ate.py TRAJECTORY REFERENCE [--json]
+Both files: TUM ("t x y z qx qy qz qw") or "t x y theta" per line; gzip
+when the name ends in .gz. Exit 4 on a malformed or empty file, or when
+fewer than half of the poses can be matched.
+"""
+import gzip
+import json
+import math
+import sys
+
+import numpy as np
+
+
+def load_positions(path):
+    opener = gzip.open if path.endswith(".gz") else open
+    rows = []
+    try:
+        with opener(path, "rt") as f:
+            for n, line in enumerate(f, 1):
+                s = line.split()
+                if not s or s[0].startswith("#"):
+                    continue
+                if len(s) not in (4, 8):
+                    raise SystemExit(f"ate.py: {path}:{n}: expected 4 or 8 fields, got {len(s)}")
+                try:
+                    rows.append((float(s[0]), float(s[1]), float(s[2])))
+                except ValueError:
+                    raise SystemExit(f"ate.py: {path}:{n}: not a number")
+    except OSError as e:
+        raise SystemExit(f"ate.py: {path}: {e.strerror or e}")
+    if not rows:
+        raise SystemExit(f"ate.py: {path}: no poses")
+    return np.array(rows)
+
+
+def match(est, ref, tol=0.01):
+    """Positions of the pose pairs: by index, or by nearest timestamp."""
+    if len(est) == len(ref):
+        return est[:, 1:], ref[:, 1:]
+    order = np.argsort(ref[:, 0], kind="stable")
+    times = ref[order, 0]
+    i = np.clip(np.searchsorted(times, est[:, 0]), 1, max(len(times) - 1, 1))
+    lo = np.clip(i - 1, 0, len(times) - 1)
+    hi = np.clip(i, 0, len(times) - 1)
+    near = np.where(np.abs(times[lo] - est[:, 0]) <= np.abs(times[hi] - est[:, 0]), lo, hi)
+    ok = np.abs(times[near] - est[:, 0]) <= tol
+    return est[ok, 1:], ref[order[near[ok]], 1:]
+
+
+def ate(est, ref):
+    """RMSE and max of |R est + t - ref| for the best rotation R and translation t."""
+    me, mr = est.mean(axis=0), ref.mean(axis=0)
+    u, _, vt = np.linalg.svd((est - me).T @ (ref - mr))
+    d = np.sign(np.linalg.det(vt.T @ u.T))
+    r = vt.T @ np.diag([1.0, d]) @ u.T
+    e = np.linalg.norm((r @ (est - me).T).T + mr - ref, axis=1)
+    return math.sqrt(float((e ** 2).mean())), float(e.max())
+
+
+def main(argv):
+    args = [a for a in argv[1:] if a != "--json"]
+    if len(args) != 2:
+        print(__doc__, file=sys.stderr)
+        return 2
+    try:
+        est, ref = load_positions(args[0]), load_positions(args[1])
+    except SystemExit as e:
+        print(e, file=sys.stderr)
+        return 4
+    e, r = match(est, ref)
+    if len(e) < max(len(est), len(ref)) / 2:
+        print(f"ate.py: only {len(e)} of {len(est)} poses of {args[0]} match a pose of {args[1]} "
+              "(by index or by timestamp within 0.01 s)", file=sys.stderr)
+        return 4
+    rmse, worst = ate(e, r)
+    est = e
+    if "--json" in argv:
+        print(json.dumps({"count": len(est), "rmse_m": rmse, "max_m": worst}))
+    else:
+        print(f"{len(est)} poses: position RMSE {rmse:.3f} m, max {worst:.3f} m")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
