@@ -35,6 +35,7 @@ void KeyframeGraphOptions::load(Config& cfg, const std::string& s) {
   kernel = k == "dcs" ? RobustKernel::kDcs : RobustKernel::kHuber;
   robust_chi2 = cfg.get_double(s, "robust_chi2", robust_chi2);
   rounds = cfg.get_int(s, "rounds", rounds);
+  round_tolerance = cfg.get_double(s, "round_tolerance", round_tolerance);
   max_iterations = cfg.get_int(s, "max_iterations", max_iterations);
   relative_tolerance = cfg.get_double(s, "relative_tolerance", relative_tolerance);
 
@@ -57,6 +58,7 @@ void KeyframeGraphOptions::load(Config& cfg, const std::string& s) {
   require(std::isfinite(match_inflation) && match_inflation >= 1, s, "match_inflation", ">= 1");
   require(std::isfinite(robust_chi2) && robust_chi2 > 0, s, "robust_chi2", "> 0");
   require(rounds >= 1 && rounds <= 100, s, "rounds", "in [1, 100]");
+  require(std::isfinite(round_tolerance) && round_tolerance >= 0, s, "round_tolerance", ">= 0");
   require(max_iterations >= 1, s, "max_iterations", ">= 1");
   require(relative_tolerance > 0 && relative_tolerance < 1, s, "relative_tolerance", "in (0, 1)");
 }

@@ -332,6 +332,7 @@ class Graph {
     Cholesky cholesky;
     std::vector<Edge> edges;
     for (int round = 0; round < opt_.rounds; ++round) {
+      const std::vector<Pose2D> before_round = x_;
       edges = fixed_;
       if (opt_.match) add_matches(&edges);
       ++r.rounds;
@@ -349,6 +350,7 @@ class Graph {
           break;
       }
       r.final_cost = cost;
+      if (moved_at_most(before_round, opt_.round_tolerance)) break;
     }
     // The last round's constraints, counted and used for the covariances.
     for (const Edge& e : edges) {
@@ -515,6 +517,15 @@ class Graph {
         edges->push_back(e);
       }
     }
+  }
+
+  // Whether no keyframe moved by more than `tolerance` (m, rad) from `x`.
+  bool moved_at_most(const std::vector<Pose2D>& x, double tolerance) const {
+    for (size_t v = area_ids_.size(); v < x_.size(); ++v)
+      if (std::hypot(x_[v].x - x[v].x, x_[v].y - x[v].y) > tolerance ||
+          std::fabs(wrap_angle(x_[v].theta - x[v].theta)) > tolerance)
+        return false;
+    return true;
   }
 
   bool take_step(const std::vector<Edge>& edges, const std::vector<int>& column,

@@ -142,7 +142,7 @@ TEST(KeyframeGraph, RecoversTheTruePosesWhereTheAreaEstimateIsOff) {
   ASSERT_GT(g.nodes.size(), 50u);
   for (const KeyframeNode& n : g.nodes) {
     EXPECT_LT(position_error(n.global, s.truth[n.step]), 0.03) << "step " << n.step;
-    EXPECT_LT(angle_error(n.global, s.truth[n.step]), 0.005) << "step " << n.step;
+    EXPECT_LT(angle_error(n.global, s.truth[n.step]), 0.01) << "step " << n.step;
   }
   // Matches across the areas were found, and kept.
   EXPECT_GT(g.report.matches, 20u);

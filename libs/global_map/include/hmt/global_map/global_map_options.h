@@ -35,9 +35,9 @@ struct KeyframeGraphOptions {
   // (the filter's drift inside an area grows with the distance travelled in
   // it, which the distance from the origin stands for).
   double in_area_std_xy = 0.02;               // [m]
-  double in_area_std_xy_per_metre = 0.01;     // [m/m]
+  double in_area_std_xy_per_metre = 0.03;     // [m/m]
   double in_area_std_theta = 0.005;           // [rad]
-  double in_area_std_theta_per_metre = 0.002; // [rad/m]
+  double in_area_std_theta_per_metre = 0.005; // [rad/m]
 
   // (b) Consecutive keyframes: their relative motion along the path, with
   // an odometry-like std growing with the distance and rotation between.
@@ -51,7 +51,7 @@ struct KeyframeGraphOptions {
   bool match = true;
   // Kept only if the match explains at least this fraction of the scan's
   // points ...
-  double match_min_ratio = 0.7;
+  double match_min_ratio = 0.5;
   // ... and moved the pose by at most this much from the current estimate.
   double match_gate_xy = 0.5;     // [m]
   double match_gate_theta = 0.2;  // [rad]
@@ -68,9 +68,13 @@ struct KeyframeGraphOptions {
   RobustKernel kernel = RobustKernel::kDcs;
   double robust_chi2 = 9.0;
 
-  // Rounds of (match, solve); matching in each round starts from the
-  // estimate the previous round left.
-  int rounds = 3;
+  // At most this many rounds of (match, solve); matching in each round
+  // starts from the estimate the previous round left, so overlaps the
+  // area-grain estimate placed too far apart are found as it improves.
+  // The rounds end early once a round moved no keyframe by more than
+  // round_tolerance (metres, and radians for the heading).
+  int rounds = 5;
+  double round_tolerance = 0.01;
   // Gauss-Newton iterations per round, and the relative cost decrease that
   // stops them.
   int max_iterations = 20;
