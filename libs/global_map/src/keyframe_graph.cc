@@ -13,6 +13,7 @@
 #include <string>
 
 #include "hmt/metric_slam/scan_points.h"
+#include "hmt/metric_slam/worker_pool.h"
 
 namespace hmt::global_map {
 namespace {
@@ -288,9 +289,9 @@ class Graph {
  public:
   Graph(const topology::HmtMap& map, const std::vector<AreaVisit>& visits,
         const StepSource& steps, const GlobalPoses& initial, const KeyframeGraphOptions& opt,
-        const metric_slam::MatcherOptions& matcher_opt)
+        const metric_slam::MatcherOptions& matcher_opt, int threads)
       : map_(map), visits_(visits), steps_(steps), opt_(opt), matcher_(matcher_opt),
-        table_(visits, steps) {
+        table_(visits, steps), pool_(metric_slam::WorkerPool::threads_for(threads)) {
     if (!map.has_area(initial.root) || !initial.poses.count(initial.root))
       throw std::invalid_argument("optimize_keyframe_graph: unknown root area " +
                                   std::to_string(initial.root));
@@ -479,43 +480,55 @@ class Graph {
   }
 
   // (d) every keyframe's scan in every other area whose box (at the current
-  // estimate) holds the keyframe.
+  // estimate) holds the keyframe. Keyframes are matched in parallel, each
+  // into its own slot, and the slots joined in keyframe order, so the
+  // constraints do not depend on the number of threads.
   void add_matches(std::vector<Edge>* edges) {
     const size_t A = area_ids_.size();
     std::vector<std::optional<Box>> boxes(A);
     for (size_t a = 0; a < A; ++a)
       if (const auto& g = map_.area(area_ids_[a]).map) boxes[a] = global_box(*g, x_[a]);
+    std::vector<std::vector<Edge>> found(nodes_.size());
+    std::vector<size_t> tried(nodes_.size(), 0);
+    pool_.parallel_for(nodes_.size(), [&](size_t i) { match_node(i, boxes, &found[i], &tried[i]); });
     report_.matches_tried = 0;
-    const metric_slam::MatcherOptions& mo = matcher_.options();
     for (size_t i = 0; i < nodes_.size(); ++i) {
-      const Pose2D& g = x_[A + i];
-      const LogStep* step = steps_(nodes_[i].step);
-      if (!step) continue;
-      for (size_t a = 0; a < A; ++a) {
-        if (area_ids_[a] == nodes_[i].area || !boxes[a] || !boxes[a]->holds(g)) continue;
-        const grid::OccupancyGrid& grid = *map_.area(area_ids_[a]).map;
-        const metric_slam::ScanPoints pts =
-            metric_slam::prepare_scan(step->scan, mo.max_range, mo.beam_skip, grid.resolution());
-        if (pts.hit.empty()) continue;
-        ++report_.matches_tried;
-        const Pose2D guess = x_[a].inverse() + g;
-        metric_slam::MatchScore score;
-        Eigen::Matrix3d hessian;
-        const Pose2D m = matcher_.optimize(grid, guess, pts, &score, &hessian);
-        if (score.matched < opt_.match_min_ratio * static_cast<double>(pts.hit.size())) continue;
-        const Pose2D moved_by = m - guess;
-        if (moved_by.norm() > opt_.match_gate_xy || std::fabs(moved_by.theta) > opt_.match_gate_theta)
-          continue;
-        const std::optional<Eigen::Matrix3d> info = match_information(hessian, opt_);
-        if (!info) continue;
-        Edge e;
-        e.from = static_cast<int>(a);
-        e.to = node_var(i);
-        e.mean = m;
-        e.information = *info;
-        e.kind = Kind::kMatch;
-        edges->push_back(e);
-      }
+      report_.matches_tried += tried[i];
+      edges->insert(edges->end(), found[i].begin(), found[i].end());
+    }
+  }
+
+  void match_node(size_t i, const std::vector<std::optional<Box>>& boxes, std::vector<Edge>* out,
+                  size_t* tried) const {
+    const size_t A = area_ids_.size();
+    const metric_slam::MatcherOptions& mo = matcher_.options();
+    const Pose2D& g = x_[A + i];
+    const LogStep* step = steps_(nodes_[i].step);
+    if (!step) return;
+    for (size_t a = 0; a < A; ++a) {
+      if (area_ids_[a] == nodes_[i].area || !boxes[a] || !boxes[a]->holds(g)) continue;
+      const grid::OccupancyGrid& grid = *map_.area(area_ids_[a]).map;
+      const metric_slam::ScanPoints pts =
+          metric_slam::prepare_scan(step->scan, mo.max_range, mo.beam_skip, grid.resolution());
+      if (pts.hit.empty()) continue;
+      ++*tried;
+      const Pose2D guess = x_[a].inverse() + g;
+      metric_slam::MatchScore score;
+      Eigen::Matrix3d hessian;
+      const Pose2D m = matcher_.optimize(grid, guess, pts, &score, &hessian);
+      if (score.matched < opt_.match_min_ratio * static_cast<double>(pts.hit.size())) continue;
+      const Pose2D moved_by = m - guess;
+      if (moved_by.norm() > opt_.match_gate_xy || std::fabs(moved_by.theta) > opt_.match_gate_theta)
+        continue;
+      const std::optional<Eigen::Matrix3d> info = match_information(hessian, opt_);
+      if (!info) continue;
+      Edge e;
+      e.from = static_cast<int>(a);
+      e.to = node_var(i);
+      e.mean = m;
+      e.information = *info;
+      e.kind = Kind::kMatch;
+      out->push_back(e);
     }
   }
 
@@ -549,6 +562,7 @@ class Graph {
   const KeyframeGraphOptions& opt_;
   metric_slam::ScanMatcher matcher_;
   PathTable table_;
+  metric_slam::WorkerPool pool_;
   AreaId root_ = topology::kNoArea;
   std::vector<KeyframeNode> nodes_;
   std::vector<AreaId> area_ids_;  // ascending; variable a is area_ids_[a]
@@ -565,8 +579,9 @@ KeyframeGraph optimize_keyframe_graph(const topology::HmtMap& map,
                                       const std::vector<AreaVisit>& visits,
                                       const StepSource& steps, const GlobalPoses& initial,
                                       const KeyframeGraphOptions& options,
-                                      const metric_slam::MatcherOptions& matcher) {
-  Graph graph(map, visits, steps, initial, options, matcher);
+                                      const metric_slam::MatcherOptions& matcher,
+                                      int threads) {
+  Graph graph(map, visits, steps, initial, options, matcher, threads);
   return graph.solve();
 }
 

@@ -123,10 +123,10 @@ struct Scenario {
 double position_error(const Pose2D& a, const Pose2D& b) { return std::hypot(a.x - b.x, a.y - b.y); }
 double angle_error(const Pose2D& a, const Pose2D& b) { return std::fabs(wrap_angle(a.theta - b.theta)); }
 
-KeyframeGraph solve(const Scenario& s, const KeyframeGraphOptions& opt = {}) {
+KeyframeGraph solve(const Scenario& s, const KeyframeGraphOptions& opt = {}, int threads = 1) {
   const GlobalPoses initial = optimize_poses(s.map, 1);
   return optimize_keyframe_graph(s.map, s.visits, s.steps(), initial, opt,
-                                 metric_slam::MatcherOptions{});
+                                 metric_slam::MatcherOptions{}, threads);
 }
 
 TEST(KeyframeGraph, RecoversTheTruePosesWhereTheAreaEstimateIsOff) {
@@ -178,9 +178,20 @@ TEST(KeyframeGraph, WithoutMatchesThePathStillJoinsTheAreas) {
   EXPECT_LT(position_error(g.areas.poses.at(2).mean, s.area2), 0.1);
 }
 
-TEST(KeyframeGraph, SameInputSameOutput) {
+TEST(KeyframeGraph, SameInputSameOutputWhateverTheThreads) {
   const Scenario s(Pose2D(0.3, -0.2, 0.04), diag(0.1, 0.03));
-  const KeyframeGraph a = solve(s), b = solve(s);
+  // Twice on one thread, and on three.
+  const KeyframeGraph a = solve(s), b = solve(s), c = solve(s, {}, 3);
+  for (const KeyframeGraph* other : {&b, &c}) {
+    ASSERT_EQ(a.nodes.size(), other->nodes.size());
+    for (size_t i = 0; i < a.nodes.size(); ++i) {
+      EXPECT_EQ(a.nodes[i].global.x, other->nodes[i].global.x);
+      EXPECT_EQ(a.nodes[i].global.y, other->nodes[i].global.y);
+      EXPECT_EQ(a.nodes[i].global.theta, other->nodes[i].global.theta);
+    }
+    EXPECT_EQ(a.report.matches, other->report.matches);
+    EXPECT_EQ(a.report.iterations, other->report.iterations);
+  }
   ASSERT_EQ(a.nodes.size(), b.nodes.size());
   for (size_t i = 0; i < a.nodes.size(); ++i) {
     EXPECT_EQ(a.nodes[i].step, b.nodes[i].step);

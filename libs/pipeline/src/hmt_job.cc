@@ -180,7 +180,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
     try {
       const auto tg = std::chrono::steady_clock::now();
       const global_map::KeyframeGraph graph = global_map::optimize_keyframe_graph(
-          map, visits, step_at, poses, opt.global_map.graph, opt.rbpf.matcher);
+          map, visits, step_at, poses, opt.global_map.graph, opt.rbpf.matcher, opt.rbpf.threads);
       traj = global_map::keyframe_trajectory(visits, graph.nodes, first_step, n);
       global = global_map::render_keyframe_grid(graph.nodes, step_at, opt.rbpf.resolution,
                                                 opt.rbpf.insertion);

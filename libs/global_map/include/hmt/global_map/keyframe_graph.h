@@ -38,7 +38,8 @@
 // estimate placed too far apart to match are found once they come closer.
 //
 // Deterministic: nodes, constraints and areas are in fixed orders (path
-// order, ascending ids), and everything runs on the calling thread.
+// order, ascending ids); the matching runs in parallel over keyframes, each
+// writing its own slot, joined in keyframe order.
 #pragma once
 
 #include <Eigen/Core>
@@ -105,7 +106,8 @@ struct KeyframeGraph {
 // Builds and solves the graph. `initial` gives the areas' starting poses
 // and the root (e.g. optimize_poses()); areas it lacks are placed from the
 // path. `matcher` is the project's scan matcher configuration (its grids
-// are the areas' archived maps). Throws std::invalid_argument for an
+// are the areas' archived maps). The scans are matched on `threads` threads
+// (0: one per core; the result is the same for any count). Throws std::invalid_argument for an
 // unknown root, visits of unknown areas or no keyframe at all, and
 // std::runtime_error if the normal equations cannot be factorised.
 KeyframeGraph optimize_keyframe_graph(const topology::HmtMap& map,
@@ -113,6 +115,7 @@ KeyframeGraph optimize_keyframe_graph(const topology::HmtMap& map,
                                       const StepSource& steps,
                                       const GlobalPoses& initial,
                                       const KeyframeGraphOptions& options,
-                                      const metric_slam::MatcherOptions& matcher);
+                                      const metric_slam::MatcherOptions& matcher,
+                                      int threads = 1);
 
 }  // namespace hmt::global_map
