@@ -13,6 +13,8 @@
 #include "hmt/common/resources.h"
 #include "hmt/global_map/global_grid.h"
 #include "hmt/global_map/global_poses.h"
+#include "hmt/global_map/keyframe_graph.h"
+#include "hmt/global_map/keyframe_map.h"
 #include "hmt/global_map/overlay.h"
 #include "hmt/grid/map_export.h"
 #include "hmt/framework/hmt_system.h"
@@ -147,9 +149,10 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   sum.loop_closures = filter.stats().loop_closures_accepted;
   owned.reset();
 
-  // The global map: area poses by least squares over every arc (002 Sec.
-  // IV-C), the shortest-path tree as the fallback when the optimisation
-  // cannot run.
+  // Area poses by least squares over every arc (002 Sec. IV-C), the
+  // shortest-path tree as the fallback when the optimisation cannot run:
+  // the global map itself with [global_map] method = areas, the keyframe
+  // graph's starting point otherwise.
   global_map::PoseGraphReport report;
   global_map::GlobalPoses poses;
   std::string pose_method = "least_squares";
@@ -161,7 +164,54 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
     poses = global_map::shortest_path_poses(map, 1);
     pose_method = "shortest_path";
   }
-  const std::vector<Pose2D> traj = global_trajectory(segments, poses, first_step, n);
+  std::vector<global_map::AreaVisit> visits;
+  for (const auto& s : segments) visits.push_back({s.area, s.first_step, s.poses});
+  const global_map::StepSource step_at = [&](uint64_t step) -> const LogStep* {
+    if (step < first_step || step - first_step >= n) return nullptr;
+    return &log.steps[static_cast<size_t>(step - first_step)];
+  };
+
+  std::vector<Pose2D> traj;
+  grid::OccupancyGrid global(opt.rbpf.resolution);
+  nlohmann::json graph_json;
+  bool placed = false;
+  if (opt.global_map.method == global_map::GlobalMapMethod::kKeyframes) {
+    // The keyframe graph: the trajectory placed keyframe by keyframe and the
+    // map drawn from the keyframes' scans; the area-grain map if it fails.
+    try {
+      const auto tg = std::chrono::steady_clock::now();
+      const global_map::KeyframeGraph graph = global_map::optimize_keyframe_graph(
+          map, visits, step_at, poses, opt.global_map.graph, opt.rbpf.matcher, opt.rbpf.threads);
+      traj = global_map::keyframe_trajectory(visits, graph.nodes, first_step, n);
+      global = global_map::render_keyframe_grid(graph.nodes, step_at, opt.rbpf.resolution,
+                                                opt.rbpf.insertion);
+      poses = graph.areas;
+      const global_map::KeyframeGraphReport& r = graph.report;
+      graph_json = {{"area_nodes", r.area_nodes},
+                    {"keyframe_nodes", r.keyframe_nodes},
+                    {"constraints", {{"in_area", r.in_area},
+                                     {"consecutive", r.consecutive},
+                                     {"arcs", r.arcs},
+                                     {"matches", r.matches}}},
+                    {"matches_tried", r.matches_tried},
+                    {"down_weighted", r.down_weighted},
+                    {"rounds", r.rounds},
+                    {"iterations", r.iterations},
+                    {"initial_cost", r.initial_cost},
+                    {"final_cost", r.final_cost},
+                    {"solve_time_s", r.time_s},
+                    {"time_s", std::chrono::duration<double>(
+                                   std::chrono::steady_clock::now() - tg).count()}};
+      placed = true;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "hmt-slam: warning: keyframe graph failed (%s); "
+                   "placing whole areas\n", e.what());
+    }
+  }
+  if (!placed) {
+    traj = global_trajectory(segments, poses, first_step, n);
+    global = global_map::render_global_grid(map, poses, opt.rbpf.resolution);
+  }
   std::vector<io::StampedPose> stamped;
   for (size_t i = 0; i < n; ++i) stamped.push_back({log.steps[i].timestamp, traj[i]});
 
@@ -171,7 +221,6 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   sum.arcs = map.arcs().size();
   io::write_tum(out_dir + "/trajectory.tum", stamped);
 
-  const grid::OccupancyGrid global = global_map::render_global_grid(map, poses, opt.rbpf.resolution);
   const grid::MapImage img = grid::render(global, opt.output.map_margin);
   if (opt.output.png) {
     sum.map_png = out_dir + "/map.png";
@@ -202,6 +251,8 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
                        {"initial_chi2", report.initial_chi2},
                        {"final_chi2", report.final_chi2},
                        {"converged", report.converged}};
+  j["global_map"] = {{"method", placed ? "keyframes" : "areas"}};
+  if (placed) j["global_map"]["keyframe_graph"] = graph_json;
   write_text_atomically(out_dir + "/summary.json", j.dump(2) + "\n");
   return sum;
 }

@@ -9,6 +9,7 @@
 #include "hmt/common/sensor_data.h"
 #include "hmt/area/area_options.h"
 #include "hmt/framework/framework_options.h"
+#include "hmt/global_map/global_map_options.h"
 #include "hmt/grouping/grouping_options.h"
 #include "hmt/hybrid/hybrid_options.h"
 #include "hmt/metric_slam/rbpf_options.h"
@@ -41,6 +42,7 @@ struct JobOptions {
   tlca::TlcaOptions tlca;
   hybrid::HybridOptions hybrid;
   framework::FrameworkOptions framework;
+  global_map::GlobalMapOptions global_map;
   // The options of the HMT-SLAM estimator, gathered from the above.
   hybrid::HmtOptions hmt() const { return {rbpf, area, tsbi, tlca, hybrid}; }
 };

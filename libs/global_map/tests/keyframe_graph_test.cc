@@ -1,0 +1,261 @@
+#include "hmt/global_map/keyframe_graph.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "hmt/common/random.h"
+#include "hmt/global_map/keyframe_map.h"
+#include "hmt/grid/scan_insertion.h"
+#include "hmt/sim/ray_world.h"
+
+namespace hmt::global_map {
+namespace {
+
+using topology::HmtMap;
+using topology::PoseGaussian;
+
+Eigen::Matrix3d diag(double sxy, double st) {
+  return Eigen::Vector3d(sxy * sxy, sxy * sxy, st * st).asDiagonal();
+}
+
+// A 20 x 10 m office with an inner wall and a few boxes, so that scans pin
+// the pose down in every direction.
+sim::World office() {
+  sim::World w;
+  w.box(0, 0, 20, 10);
+  w.wall(8, 0, 8, 6);
+  w.wall(8, 6, 9, 6);
+  w.wall(9, 6, 9, 0);
+  w.box(3, 7, 3.8, 7.8);
+  w.box(14, 2, 15.2, 3.2);
+  w.box(16.5, 7.5, 17.1, 8.1);
+  w.box(11, 8, 11.5, 8.5);
+  return w;
+}
+
+// The robot's true poses along the way-points, 0.1 m a step, heading along
+// each leg.
+std::vector<Pose2D> drive(const std::vector<Point2D>& waypoints) {
+  std::vector<Pose2D> out;
+  for (size_t i = 0; i + 1 < waypoints.size(); ++i) {
+    const Point2D a = waypoints[i], b = waypoints[i + 1];
+    const double len = std::hypot(b.x - a.x, b.y - a.y);
+    const double heading = std::atan2(b.y - a.y, b.x - a.x);
+    const int n = static_cast<int>(std::round(len / 0.1));
+    for (int k = 0; k < n; ++k) {
+      const double f = static_cast<double>(k) / n;
+      out.emplace_back(a.x + f * (b.x - a.x), a.y + f * (b.y - a.y), heading);
+    }
+  }
+  return out;
+}
+
+// A run as the filter would leave it: the office mapped as two areas, the
+// robot in area 1 (the root, the world frame), then area 2 (whose frame is
+// the robot's pose where it entered), then area 1 again; each area's grid
+// built from its own visits' scans at their poses in its frame. The HMT
+// map's only arc 1 -> 2 is wrong by `arc_error` with covariance `arc_cov`,
+// so the area-grain estimate misplaces area 2 by that much.
+struct Scenario {
+  std::vector<Pose2D> truth;  // per step, world frame
+  Pose2D area2;               // area 2's true frame
+  Log log;
+  HmtMap map;
+  std::vector<AreaVisit> visits;
+
+  // `revisit_error`: the filter's poses of the second visit to area 1 are
+  // off by this (composed on the left in area 1's frame: a misplaced
+  // re-entry), and that visit's scans are not in area 1's grid.
+  Scenario(const Pose2D& arc_error, const Eigen::Matrix3d& arc_cov,
+           const Pose2D& revisit_error = Pose2D()) {
+    truth = drive({{1.5, 2}, {6, 2}, {6, 8.5}, {13, 7}, {13, 4.5}, {18, 5}, {18, 8.8},
+                   {12.5, 6.5}, {6.5, 8.8}, {6.5, 3}});
+    const sim::World world = office();
+    sim::Sensor sensor;
+    sensor.beams = 360;
+    sensor.max_range = 30.0;
+    Random noise(7);
+    for (size_t i = 0; i < truth.size(); ++i) {
+      LogStep s;
+      s.timestamp = 0.1 * static_cast<double>(i);
+      s.has_odometry = i > 0;
+      if (i > 0) s.odometry_increment = truth[i] - truth[i - 1];
+      s.scan = sim::raycast(world, truth[i], sensor, &noise, 0.01);
+      s.scan.timestamp = s.timestamp;
+      log.steps.push_back(std::move(s));
+    }
+    // Area 2 from the step reaching (10, ~7.3) to the step back at x ~ 11.
+    size_t enter = 0, leave = 0;
+    for (size_t i = 0; i < truth.size(); ++i) {
+      if (!enter && truth[i].x >= 10.0 && truth[i].y > 6.0) enter = i;
+      if (enter && i > enter + 100 && !leave && truth[i].x <= 11.0) leave = i;
+    }
+    area2 = truth[enter];
+    const grid::InsertionOptions ins;
+    grid::OccupancyGrid g1(0.05), g2(0.05);
+    auto visit = [&](AreaId area, const Pose2D& frame, size_t from, size_t to,
+                     grid::OccupancyGrid* g, const Pose2D& error) {
+      AreaVisit v{area, from, {}};
+      for (size_t i = from; i <= to; ++i) {
+        v.poses.push_back(error + (truth[i] - frame));
+        if (g) grid::insert_scan(*g, v.poses.back(), log.steps[i].scan, ins);
+      }
+      visits.push_back(v);
+    };
+    const bool revisit_off = revisit_error.norm() > 0 || revisit_error.theta != 0;
+    visit(1, Pose2D(), 0, enter, &g1, Pose2D());
+    visit(2, area2, enter, leave, &g2, Pose2D());
+    visit(1, Pose2D(), leave, truth.size() - 1, revisit_off ? nullptr : &g1, revisit_error);
+    map.add_area(1);
+    topology::ReferenceFrame f;
+    f.parent = 1;
+    f.origin_in_parent = area2;
+    map.add_area(2, f);
+    map.archive_map(1, g1);
+    map.archive_map(2, g2);
+    map.add_arc_measurement(1, 2, PoseGaussian(area2 + arc_error, arc_cov));
+  }
+
+  StepSource steps() const {
+    return [this](uint64_t s) -> const LogStep* {
+      return s < log.steps.size() ? &log.steps[static_cast<size_t>(s)] : nullptr;
+    };
+  }
+};
+
+double position_error(const Pose2D& a, const Pose2D& b) { return std::hypot(a.x - b.x, a.y - b.y); }
+double angle_error(const Pose2D& a, const Pose2D& b) { return std::fabs(wrap_angle(a.theta - b.theta)); }
+
+KeyframeGraph solve(const Scenario& s, const KeyframeGraphOptions& opt = {}, int threads = 1) {
+  const GlobalPoses initial = optimize_poses(s.map, 1);
+  return optimize_keyframe_graph(s.map, s.visits, s.steps(), initial, opt,
+                                 metric_slam::MatcherOptions{}, threads);
+}
+
+TEST(KeyframeGraph, RecoversTheTruePosesWhereTheAreaEstimateIsOff) {
+  const Scenario s(Pose2D(0.3, -0.2, 0.04), diag(0.1, 0.03));
+  // The area-grain estimate carries the arc's error.
+  const GlobalPoses areas = optimize_poses(s.map, 1);
+  ASSERT_GT(position_error(areas.poses.at(2).mean, s.area2), 0.3);
+
+  const KeyframeGraph g = solve(s);
+  EXPECT_LT(position_error(g.areas.poses.at(2).mean, s.area2), 0.03);
+  EXPECT_LT(angle_error(g.areas.poses.at(2).mean, s.area2), 0.005);
+  EXPECT_EQ(g.areas.poses.at(1).mean.norm(), 0.0);  // the root stays put
+  ASSERT_GT(g.nodes.size(), 50u);
+  for (const KeyframeNode& n : g.nodes) {
+    EXPECT_LT(position_error(n.global, s.truth[n.step]), 0.03) << "step " << n.step;
+    EXPECT_LT(angle_error(n.global, s.truth[n.step]), 0.01) << "step " << n.step;
+  }
+  // Matches across the areas were found, and kept.
+  EXPECT_GT(g.report.matches, 20u);
+  EXPECT_EQ(g.report.arcs, 1u);
+  EXPECT_EQ(g.report.in_area, g.nodes.size());
+  EXPECT_EQ(g.report.consecutive, g.nodes.size() - 1);
+  EXPECT_EQ(g.report.area_nodes, 2u);
+
+  // Every step placed from its visit's keyframes: no jump where the areas
+  // switch, every step within a few cm of the truth.
+  const std::vector<Pose2D> traj = keyframe_trajectory(s.visits, g.nodes, 0, s.truth.size());
+  for (size_t i = 0; i < traj.size(); ++i)
+    EXPECT_LT(position_error(traj[i], s.truth[i]), 0.03) << "step " << i;
+}
+
+TEST(KeyframeGraph, RecoversAMisplacedRevisitInsideAnArea) {
+  // The arc is right; the error is inside area 1: its second visit's poses
+  // are 0.15 m and 0.02 rad off, so placing whole areas puts that stretch
+  // of the trajectory off by up to as much and more.
+  const Scenario s(Pose2D(), diag(0.1, 0.03), Pose2D(0.12, -0.09, 0.02));
+  const AreaVisit& revisit = s.visits.back();
+  const GlobalPoses areas = optimize_poses(s.map, 1);
+  double worst = 0.0;
+  for (size_t k = 0; k < revisit.poses.size(); ++k)
+    worst = std::max(worst, position_error(areas.poses.at(1).mean + revisit.poses[k],
+                                           s.truth[revisit.first_step + k]));
+  ASSERT_GT(worst, 0.1);
+
+  const KeyframeGraph g = solve(s);
+  const std::vector<Pose2D> traj = keyframe_trajectory(s.visits, g.nodes, 0, s.truth.size());
+  for (size_t i = revisit.first_step; i < s.truth.size(); ++i)
+    EXPECT_LT(position_error(traj[i], s.truth[i]), 0.04) << "step " << i;
+}
+
+TEST(KeyframeGraph, AConfidentWrongArcIsDownWeighted) {
+  // The arc is off by 0.4 m but claims 3 cm: without the robust kernel it
+  // would drag area 2 most of the way; with it the matches win.
+  const Scenario s(Pose2D(0.4, 0.0, 0.0), diag(0.03, 0.01));
+  const KeyframeGraph g = solve(s);
+  EXPECT_LT(position_error(g.areas.poses.at(2).mean, s.area2), 0.03);
+  EXPECT_GE(g.report.down_weighted, 1u);
+}
+
+TEST(KeyframeGraph, WithoutMatchesThePathStillJoinsTheAreas) {
+  // The switching steps are known in both areas' frames, so even with no
+  // scan matching the consecutive constraints outweigh a loose wrong arc.
+  const Scenario s(Pose2D(0.3, -0.2, 0.04), diag(0.3, 0.1));
+  KeyframeGraphOptions opt;
+  opt.match = false;
+  const KeyframeGraph g = solve(s, opt);
+  EXPECT_EQ(g.report.matches, 0u);
+  EXPECT_LT(position_error(g.areas.poses.at(2).mean, s.area2), 0.1);
+}
+
+TEST(KeyframeGraph, SameInputSameOutputWhateverTheThreads) {
+  const Scenario s(Pose2D(0.3, -0.2, 0.04), diag(0.1, 0.03));
+  // Twice on one thread, and on three.
+  const KeyframeGraph a = solve(s), b = solve(s), c = solve(s, {}, 3);
+  for (const KeyframeGraph* other : {&b, &c}) {
+    ASSERT_EQ(a.nodes.size(), other->nodes.size());
+    for (size_t i = 0; i < a.nodes.size(); ++i) {
+      EXPECT_EQ(a.nodes[i].global.x, other->nodes[i].global.x);
+      EXPECT_EQ(a.nodes[i].global.y, other->nodes[i].global.y);
+      EXPECT_EQ(a.nodes[i].global.theta, other->nodes[i].global.theta);
+    }
+    EXPECT_EQ(a.report.matches, other->report.matches);
+    EXPECT_EQ(a.report.iterations, other->report.iterations);
+  }
+  ASSERT_EQ(a.nodes.size(), b.nodes.size());
+  for (size_t i = 0; i < a.nodes.size(); ++i) {
+    EXPECT_EQ(a.nodes[i].step, b.nodes[i].step);
+    EXPECT_EQ(a.nodes[i].global.x, b.nodes[i].global.x);
+    EXPECT_EQ(a.nodes[i].global.y, b.nodes[i].global.y);
+    EXPECT_EQ(a.nodes[i].global.theta, b.nodes[i].global.theta);
+  }
+  for (const AreaId id : {1u, 2u}) {
+    EXPECT_EQ(a.areas.poses.at(id).mean.x, b.areas.poses.at(id).mean.x);
+    EXPECT_EQ(a.areas.poses.at(id).mean.y, b.areas.poses.at(id).mean.y);
+    EXPECT_EQ(a.areas.poses.at(id).mean.theta, b.areas.poses.at(id).mean.theta);
+    EXPECT_TRUE(a.areas.poses.at(id).cov == b.areas.poses.at(id).cov);
+  }
+  EXPECT_EQ(a.report.matches, b.report.matches);
+  EXPECT_EQ(a.report.iterations, b.report.iterations);
+}
+
+TEST(KeyframeGraph, GridDrawnFromTheKeyframeScans) {
+  const Scenario s(Pose2D(0.3, -0.2, 0.04), diag(0.1, 0.03));
+  const KeyframeGraph g = solve(s);
+  const grid::OccupancyGrid m =
+      render_keyframe_grid(g.nodes, s.steps(), 0.05, grid::InsertionOptions{});
+  // The inner wall's face (x = 8) is an obstacle, the room beside it free.
+  EXPECT_GT(m.probability(m.cell_of(7.99, 3.0)), 0.6);
+  EXPECT_LT(m.probability(m.cell_of(7.0, 3.0)), 0.4);
+  EXPECT_THROW(render_keyframe_grid(g.nodes, s.steps(), 0.0, grid::InsertionOptions{}),
+               std::invalid_argument);
+}
+
+TEST(KeyframeGraph, RejectsAnUnknownRootAndAnEmptyPath) {
+  const Scenario s(Pose2D(), diag(0.1, 0.03));
+  GlobalPoses initial = optimize_poses(s.map, 1);
+  initial.root = 9;
+  EXPECT_THROW(optimize_keyframe_graph(s.map, s.visits, s.steps(), initial, {}, {}),
+               std::invalid_argument);
+  const StepSource none = [](uint64_t) -> const LogStep* { return nullptr; };
+  EXPECT_THROW(optimize_keyframe_graph(s.map, s.visits, none, optimize_poses(s.map, 1), {}, {}),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace hmt::global_map
