@@ -31,6 +31,11 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+// Paper 001's grouping: the fixed point-match tolerance delta (Eq. 16) and
+// its parameter-free tau = 1 (Eq. 12-13), which the shipped configuration
+// replaces for online use (area_size.h); the checks below are the paper's.
+const std::string kPaper001 = "--set area.use_probabilistic=false --set area.tau=1 ";
+
 AppResult run_partition(const std::string& args, const std::string& work_dir) {
   return run_binary(HMT_PARTITION_BIN, args, work_dir);
 }
@@ -238,7 +243,7 @@ double diameter(const std::vector<int>& members, const std::vector<Pose2D>& pose
 TEST(Partition, MalagaAreasAreStretchesOfTheRoute) {
   const std::string dir = temp_dir("partition_malaga");
   const AppResult r =
-      run_partition("--config config/default.ini --quiet --out '" + dir + "/out'", dir);
+      run_partition("--config config/default.ini --quiet " + kPaper001 + "--out '" + dir + "/out'", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("outputs in: "), std::string::npos) << r.out;
   EXPECT_TRUE(r.err.empty()) << r.err;  // --quiet
@@ -279,7 +284,7 @@ TEST(Partition, MalagaAreasAreStretchesOfTheRoute) {
 
 TEST(Partition, MalagaIsDeterministicAndLowerTauCoarsens) {
   const std::string dir = temp_dir("partition_determinism");
-  const std::string base = "--config config/default.ini --quiet --set output.pgm=false ";
+  const std::string base = "--config config/default.ini --quiet --set output.pgm=false " + kPaper001;
   const AppResult a = run_partition(base + "--out '" + dir + "/a'", dir);
   const AppResult b = run_partition(base + "--out '" + dir + "/b'", dir);
   ASSERT_EQ(a.exit_code, 0) << a.err;
@@ -316,7 +321,7 @@ TEST(Partition, TumTrajectoryOfTheOdometryGivesTheSameGroups) {
     traj.push_back({log.steps[i].timestamp, pose});
   }
   io::write_tum(dir + "/odometry.tum", traj);
-  const std::string base = "--config config/default.ini --quiet --set output.pgm=false ";
+  const std::string base = "--config config/default.ini --quiet --set output.pgm=false " + kPaper001;
   const AppResult a = run_partition(base + "--out '" + dir + "/odo'", dir);
   const AppResult b =
       run_partition(base + "--poses '" + dir + "/odometry.tum' --out '" + dir + "/tum'", dir);
@@ -348,7 +353,7 @@ TEST(Partition, TumTrajectoryOfTheOdometryGivesTheSameGroups) {
 TEST(Partition, EdmontonWithReferencePoses) {
   const std::string dir = temp_dir("partition_edmonton");
   const AppResult r = run_partition(
-      "--config config/edmonton.ini --set area.tau=1 --quiet --poses datasets/edmonton.reference.txt.gz --out '" +
+      "--config config/edmonton.ini " + kPaper001 + "--quiet --poses datasets/edmonton.reference.txt.gz --out '" +
           dir + "/out'",
       dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
