@@ -58,13 +58,18 @@ def match(est, ref, tol=0.01):
     return est[ok, 1:], ref[order[near[ok]], 1:]
 
 
-def ate(est, ref):
-    """RMSE and max of |R est + t - ref| for the best rotation R and translation t."""
+def align(est, ref):
+    """est moved by the rotation and translation that best fit it to ref."""
     me, mr = est.mean(axis=0), ref.mean(axis=0)
     u, _, vt = np.linalg.svd((est - me).T @ (ref - mr))
     d = np.sign(np.linalg.det(vt.T @ u.T))
     r = vt.T @ np.diag([1.0, d]) @ u.T
-    e = np.linalg.norm((r @ (est - me).T).T + mr - ref, axis=1)
+    return (r @ (est - me).T).T + mr
+
+
+def ate(est, ref):
+    """RMSE and max of |R est + t - ref| for the best rotation R and translation t."""
+    e = np.linalg.norm(align(est, ref) - ref, axis=1)
     return math.sqrt(float((e ** 2).mean())), float(e.max())
 
 

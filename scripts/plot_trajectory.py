@@ -13,15 +13,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 sys.path.insert(0, __file__.rsplit("/", 1)[0])
-from ate import load_positions, match  # noqa: E402
-
-
-def align(est, ref):
-    me, mr = est.mean(axis=0), ref.mean(axis=0)
-    u, _, vt = np.linalg.svd((est - me).T @ (ref - mr))
-    d = np.sign(np.linalg.det(vt.T @ u.T))
-    r = vt.T @ np.diag([1.0, d]) @ u.T
-    return (r @ (est - me).T).T + mr
+from ate import align, load_positions, match  # noqa: E402
 
 
 def main(argv):
