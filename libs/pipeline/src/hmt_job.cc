@@ -196,11 +196,19 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
                      {"theta", sum.final_pose.theta}};
   j["areas"] = sum.areas;
   j["arcs"] = sum.arcs;
+  // The loop arcs the robust estimate switched off (false loop closures,
+  // global_poses.h): listed, so a map drawn without them says so.
+  nlohmann::json outliers = nlohmann::json::array();
+  for (const global_map::OutlierArc& o : report.outliers)
+    outliers.push_back({{"from", o.from}, {"to", o.to}, {"chi2", o.chi2}});
   j["global_poses"] = {{"method", pose_method},
                        {"iterations", report.iterations},
                        {"initial_chi2", report.initial_chi2},
                        {"final_chi2", report.final_chi2},
-                       {"converged", report.converged}};
+                       {"converged", report.converged},
+                       {"tested_arcs", report.tested_arcs},
+                       {"max_arc_chi2", report.max_arc_chi2},
+                       {"outlier_arcs", outliers}};
   write_text_atomically(out_dir + "/summary.json", j.dump(2) + "\n");
   return sum;
 }
