@@ -58,6 +58,26 @@ nlohmann::json run_summary(const framework::HmtSystem& system) {
   j["new_area_events"] = st.new_area_events;
   j["transitions_evaluated"] = filter.transitions().size();
   j["loop_closures_accepted"] = st.loop_closures_accepted;
+  // Every closure TLCA fused, in order: whether fine alignment refined it,
+  // and whether it agreed with the grids and the map (tlca/acceptance.h;
+  // an inconsistent one was fused with an inflated covariance).
+  nlohmann::json closures = nlohmann::json::array();
+  size_t inconsistent = 0;
+  for (const hybrid::AcceptanceEvent& ev : filter.acceptances())
+    for (const tlca::ClosureReport& c : ev.closures) {
+      inconsistent += c.consistent ? 0 : 1;
+      closures.push_back({{"step", c.record.step},
+                          {"from", c.record.from},
+                          {"to", c.record.to},
+                          {"aligned", c.aligned},
+                          {"consistent", c.consistent},
+                          {"loop_hops", c.loop_hops},
+                          {"loop_chi2", c.loop_chi2},
+                          {"correction_m", c.correction_m},
+                          {"reason", c.reason}});
+    }
+  j["loop_closures_inconsistent"] = inconsistent;
+  j["loop_closures"] = closures;
   j["max_hypotheses_alive"] = st.max_hypotheses_alive;
   j["hypotheses_at_end"] = filter.hypotheses().size();
   j["forgotten_path_entries"] = st.forgotten_path_entries;
