@@ -53,6 +53,10 @@ void require_valid(const PoseGraphOptions& options) {
   if (!(options.outlier_chi2 > 0.0 && std::isfinite(options.outlier_chi2)))
     throw std::invalid_argument(
         "optimize_poses: outlier_chi2 must be positive and finite");
+  if (!(options.outlier_floor_xy >= 0.0 && std::isfinite(options.outlier_floor_xy)) ||
+      !(options.outlier_floor_theta >= 0.0 && std::isfinite(options.outlier_floor_theta)))
+    throw std::invalid_argument(
+        "optimize_poses: outlier_floor_xy and outlier_floor_theta must be >= 0 and finite");
 }
 
 // The residual of one arc and its Jacobians with respect to the poses of
@@ -262,12 +266,13 @@ void least_squares(const std::vector<const Arc*>& arcs, const Unknowns& u,
   factorize(*cholesky, normal_equations(arcs, *poses, u).H);
 }
 
-// The normalised residual of one arc (see the header): e^T (Sigma_ab -
-// J P J^T)^-1 e, or nothing when the arc has no redundancy.
+// The normalised residual of one arc with the floor (see the header):
+// nu^T (A + F)^-1 nu, or nothing when the arc has no redundancy.
 std::optional<double> normalised_residual(const Arc& arc,
                                           const GlobalPoses& poses,
                                           const Unknowns& u,
-                                          const Cholesky& cholesky) {
+                                          const Cholesky& cholesky,
+                                          const Eigen::Matrix3d& floor) {
   const LinearisedArc l = linearise(poses.poses.at(arc.from).mean,
                                     poses.poses.at(arc.to).mean, arc.pose.mean);
   // The columns of H^-1 of the ends that are unknowns (not the root).
@@ -298,8 +303,13 @@ std::optional<double> normalised_residual(const Arc& arc,
   W = 0.5 * (W + W.transpose());
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(W);
   if (!(eig.eigenvalues().minCoeff() > kMinRedundancy)) return std::nullopt;
-  const Eigen::Vector3d z = eig.eigenvectors().transpose() * (Linv * l.residual);
-  return z.cwiseAbs2().cwiseQuotient(eig.eigenvalues()).sum();
+  // With W = V D V^T: A = Sigma_ab + S = L W^-1 L^T, nu = L W^-1 L^-1 e.
+  const Eigen::Matrix3d& V = eig.eigenvectors();
+  const Eigen::Matrix3d W_inv =
+      V * eig.eigenvalues().cwiseInverse().asDiagonal() * V.transpose();
+  const Eigen::Matrix3d A = L * W_inv * L.transpose();
+  const Eigen::Vector3d nu = L * (W_inv * (Linv * l.residual));
+  return nu.dot((A + floor).ldlt().solve(nu));
 }
 
 struct ArcTests {
@@ -310,11 +320,14 @@ struct ArcTests {
 
 ArcTests test_loop_arcs(const HmtMap& map, const std::vector<const Arc*>& arcs,
                         const GlobalPoses& poses, const Unknowns& u,
-                        const Cholesky& cholesky) {
+                        const Cholesky& cholesky, const PoseGraphOptions& options) {
+  const double fxy = options.outlier_floor_xy * options.outlier_floor_xy;
+  const double fth = options.outlier_floor_theta * options.outlier_floor_theta;
+  const Eigen::Matrix3d floor = Eigen::Vector3d(fxy, fxy, fth).asDiagonal();
   ArcTests t;
   for (const Arc* arc : arcs) {
     if (is_chain_arc(map, *arc)) continue;
-    const std::optional<double> w = normalised_residual(*arc, poses, u, cholesky);
+    const std::optional<double> w = normalised_residual(*arc, poses, u, cholesky, floor);
     if (!w) continue;
     ++t.tested;
     if (!t.worst || *w > t.worst_chi2) {
@@ -383,7 +396,7 @@ GlobalPoses optimize_poses(const HmtMap& map, AreaId root,
   if (options.robust) {
     std::set<std::pair<AreaId, AreaId>> off;
     for (bool first = true;; first = false) {
-      const ArcTests tests = test_loop_arcs(map, arcs, poses, u, cholesky);
+      const ArcTests tests = test_loop_arcs(map, arcs, poses, u, cholesky, options);
       if (first) r.tested_arcs = tests.tested;
       r.max_arc_chi2 = tests.worst ? tests.worst_chi2 : 0.0;
       if (!tests.worst || tests.worst_chi2 <= options.outlier_chi2) break;

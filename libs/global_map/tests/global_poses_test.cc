@@ -437,6 +437,45 @@ TEST(RobustPoses, ChainArcsAreNeverSwitchedOff) {
     EXPECT_LT(topology::difference(g.poses.at(i).mean, chain.poses.at(i).mean).norm(), 1e-9);
 }
 
+TEST(RobustPoses, TheStatisticIsTheLoopsMahalanobisDistance) {
+  // In a ring with one loop arc, the arc's normalised residual at the
+  // estimate is the distance of its mean from the chain's composition
+  // under the sum of both covariances (and the floor): what TLCA tests
+  // before fusing a closure. Equal to first order: the estimate
+  // linearises at the optimum, the composition at the chain.
+  const std::vector<Pose2D> truth = ring_truth();
+  HmtMap m;
+  for (AreaId i = 0; i < truth.size(); ++i) {
+    topology::ReferenceFrame f;
+    if (i > 0) f.parent = i - 1;
+    m.add_area(i, f);
+  }
+  // Crossings 5 times more certain than kCrossingCov: a loop that a small
+  // misfit already fails, so the first-order terms dominate.
+  for (AreaId i = 0; i + 1 < truth.size(); ++i)
+    m.add_arc_measurement(i, i + 1, PoseGaussian(truth[i + 1] - truth[i], kCrossingCov / 25));
+  std::vector<AreaId> chain;
+  for (AreaId i = 0; i < 12; ++i) chain.push_back(i);
+  const PoseGaussian path = topology::compose_path(m, chain);  // 11 in 0
+  m.add_arc_measurement(
+      11, 0, PoseGaussian((truth[0] - truth[11]) + Pose2D(0.2, -0.16, 0.016), kAlignedCov));
+  // In the arc's stored direction, 0 -> 11, where the floor is added.
+  const PoseGaussian closure = m.arc(0, 11);
+  for (const auto& [fxy, fth] : {std::pair{0.0, 0.0}, std::pair{0.05, 0.02}}) {
+    PoseGraphOptions o;
+    o.outlier_floor_xy = fxy;
+    o.outlier_floor_theta = fth;
+    PoseGraphReport report;
+    optimize_poses(m, 0, o, &report);
+    const Eigen::Vector3d d = topology::difference(closure.mean, path.mean);
+    const Eigen::Matrix3d S =
+        closure.cov + path.cov + Eigen::Matrix3d(Eigen::Vector3d(fxy * fxy, fxy * fxy, fth * fth).asDiagonal());
+    const double expected = d.dot(S.inverse() * d);
+    EXPECT_GT(expected, 2.0);
+    EXPECT_NEAR(report.max_arc_chi2, expected, 0.01 * expected) << "floor " << fxy;
+  }
+}
+
 TEST(OptimizePoses, BadArgumentsThrow) {
   Random rng(1);
   const HmtMap m = noisy_loop(square_loop_truth(), rng);
@@ -454,6 +493,12 @@ TEST(OptimizePoses, BadArgumentsThrow) {
   options.outlier_chi2 = 0.0;
   EXPECT_THROW(optimize_poses(m, 0, options), std::invalid_argument);
   options.outlier_chi2 = INFINITY;
+  EXPECT_THROW(optimize_poses(m, 0, options), std::invalid_argument);
+  options = {};
+  options.outlier_floor_xy = -0.1;
+  EXPECT_THROW(optimize_poses(m, 0, options), std::invalid_argument);
+  options = {};
+  options.outlier_floor_theta = NAN;
   EXPECT_THROW(optimize_poses(m, 0, options), std::invalid_argument);
 }
 

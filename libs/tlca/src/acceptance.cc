@@ -51,7 +51,10 @@ void check_loop(const topology::HmtMap& map, const ClosureRecord& closure,
   const topology::PathTree::Node& node = tree.nodes.at(closure.to);
   report.loop_hops = node.hops;
   const Eigen::Vector3d d = topology::difference(report.used.mean, node.pose.mean);
-  const Eigen::Matrix3d S = report.used.cov + node.pose.cov;
+  const double fxy = options.consistency_floor_xy * options.consistency_floor_xy;
+  const double fth = options.consistency_floor_theta * options.consistency_floor_theta;
+  const Eigen::Matrix3d S =
+      report.used.cov + node.pose.cov + Eigen::Matrix3d(Eigen::Vector3d(fxy, fxy, fth).asDiagonal());
   report.loop_chi2 = d.dot(S.ldlt().solve(d));
   const bool loop_ok = report.loop_chi2 <= options.consistency_chi2;
   if (!loop_ok) {
@@ -76,8 +79,14 @@ void TlcaOptions::load(Config& cfg, const std::string& s) {
   fine_alignment = cfg.get_bool(s, "fine_alignment", fine_alignment);
   consistency_check = cfg.get_bool(s, "consistency_check", consistency_check);
   consistency_chi2 = cfg.get_double(s, "consistency_chi2", consistency_chi2);
+  consistency_floor_xy = cfg.get_double(s, "consistency_floor_xy", consistency_floor_xy);
+  consistency_floor_theta = cfg.get_double(s, "consistency_floor_theta", consistency_floor_theta);
   require(consistency_chi2 > 0.0 && std::isfinite(consistency_chi2), s, "consistency_chi2",
           "positive and finite");
+  require(consistency_floor_xy >= 0.0 && std::isfinite(consistency_floor_xy), s,
+          "consistency_floor_xy", ">= 0 and finite");
+  require(consistency_floor_theta >= 0.0 && std::isfinite(consistency_floor_theta), s,
+          "consistency_floor_theta", ">= 0 and finite");
   require(p == "probability" || p == "unique", s, "policy", "'probability' or 'unique'");
   policy = p == "probability" ? AcceptancePolicy::kProbability : AcceptancePolicy::kUnique;
   require(accept_probability > 0.5 && accept_probability <= 1.0, s,

@@ -200,9 +200,9 @@ TEST(ClosureConsistency, AClosureOffTheArcsIsInflatedAndCannotBendTheMap) {
 }
 
 TEST(ClosureConsistency, TheGateGrowsWithTheLoop) {
-  // The same 0.6 m / 0.05 rad discrepancy: beyond the uncertainty of two
+  // The same 1.3 m / 0.08 rad discrepancy: beyond the uncertainty of two
   // crossings, within that of twenty (the drift of a long loop).
-  const Pose2D error(0.6, 0.4, 0.05);
+  const Pose2D error(1.0, 0.8, 0.08);
   Corridor short_loop(3), long_loop(21);
   const ClosureReport s =
       accept_closure(short_loop.map, short_loop.closure_into_1(error), TlcaOptions{});
@@ -233,6 +233,38 @@ TEST(ClosureConsistency, ChecksAgainstTheArcFromEarlierCrossings) {
   EXPECT_EQ(a->measurements, 2u);
   EXPECT_LT(topology::difference(a->pose.mean, before.mean).head<2>().norm(), 0.1);
   EXPECT_LT(std::fabs(topology::difference(a->pose.mean, before.mean)(2)), 0.02);
+}
+
+TEST(ClosureConsistency, TheFloorAllowsForTheAreaMapsOwnError) {
+  // Two fine alignments of the same pair of areas, each claiming 2 mm and
+  // 1 mrad, 8.7 cm apart (as on the Malaga log): the grids' Hessian leaves
+  // out the error of the area maps themselves, which the floor stands for.
+  auto run = [](double floor_xy, double floor_theta) {
+    Corridor c(2);
+    topology::Arc before;
+    before.from = 1;
+    before.to = 2;
+    before.pose = PoseGaussian(Pose2D(4.0, 0.0, 0.0), diag(0.002, 0.001));
+    before.measurements = 2;
+    c.map.set_arc(before);
+    ClosureRecord rec;
+    rec.from = 2;
+    rec.to = 1;
+    rec.arc_before = before;
+    rec.measurement = PoseGaussian(Pose2D(-4.0, 0.0, 0.0) + Pose2D(-0.028, 0.082, 0.0007),
+                                   diag(0.002, 0.001));
+    c.map.add_arc_measurement(2, 1, rec.measurement);
+    TlcaOptions o;
+    o.consistency_floor_xy = floor_xy;
+    o.consistency_floor_theta = floor_theta;
+    return accept_closure(c.map, rec, o);
+  };
+  const ClosureReport with_floor = run(0.05, 0.02);
+  EXPECT_TRUE(with_floor.consistent) << with_floor.reason;
+  EXPECT_LT(with_floor.loop_chi2, 4.0);
+  const ClosureReport without = run(0.0, 0.0);
+  EXPECT_FALSE(without.consistent);
+  EXPECT_GT(without.loop_chi2, 100.0);
 }
 
 TEST(ClosureConsistency, GridsThatDoNotOverlapFailAlone) {
@@ -273,13 +305,18 @@ TEST(ClosureConsistency, GridsThatDoNotOverlapFailAlone) {
 
 TEST(TlcaOptions, ConsistencyKeysAreReadAndChecked) {
   Config cfg = Config::from_string(
-      "[tlca]\nconsistency_check = false\nconsistency_chi2 = 12.5\n", "test");
+      "[tlca]\nconsistency_check = false\nconsistency_chi2 = 12.5\n"
+      "consistency_floor_xy = 0\nconsistency_floor_theta = 0.1\n",
+      "test");
   TlcaOptions o;
   o.load(cfg);
   EXPECT_FALSE(o.consistency_check);
   EXPECT_EQ(o.consistency_chi2, 12.5);
+  EXPECT_EQ(o.consistency_floor_xy, 0.0);
+  EXPECT_EQ(o.consistency_floor_theta, 0.1);
   for (const char* bad : {"consistency_chi2 = 0", "consistency_chi2 = -3", "consistency_chi2 = nan",
-                          "consistency_chi2 = inf", "consistency_check = maybe"}) {
+                          "consistency_chi2 = inf", "consistency_check = maybe",
+                          "consistency_floor_xy = -0.01", "consistency_floor_theta = nan"}) {
     SCOPED_TRACE(bad);
     Config c = Config::from_string(std::string("[tlca]\n") + bad + "\n", "test");
     TlcaOptions t;

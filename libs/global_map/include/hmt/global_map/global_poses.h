@@ -78,6 +78,17 @@
 //    of freedom for a correct arc. A long loop with drift has a large S and
 //    passes; a wrong closure in the same building does not. An arc with no
 //    redundancy (no other path: Sigma_ab - J P J^T = 0) cannot be tested.
+//    What is tested is that distance with a floor F = diag(outlier_floor_xy^2,
+//    outlier_floor_xy^2, outlier_floor_theta^2) added to Sigma_ab + S: a
+//    fine alignment's covariance comes from the grids' Hessian and claims
+//    millimetres, while the area maps themselves are off by centimetres
+//    and hundredths of a radian (the Malaga log's area 11 aligned twice to
+//    area 12 with 2 mm covariances, 8.7 cm apart: chi2 200 without the
+//    floor, 3 with it). The floor is far below the errors this is for.
+//    With the eigen-decomposition of the residual covariance this is
+//    nu^T (A + F)^-1 nu, A = Sigma_ab (Sigma_ab - J P J^T)^-1 Sigma_ab =
+//    Sigma_ab + S and nu = A Sigma_ab^-1 e the arc's misfit against the
+//    prediction (the identities of the residual of a linear fit).
 //
 // 3. The decision: the arc with the largest w above outlier_chi2 is
 //    switched off (a single gross error inflates the residuals of its
@@ -147,6 +158,10 @@ struct PoseGraphOptions {
   // 2 on the Intel lab), and a correct closure switched off costs accuracy,
   // while the errors this is for are metres off and score in the thousands.
   double outlier_chi2 = 30.66;
+  // The floor F of the test (see the top): a model error of the arcs, in
+  // metres and radians (>= 0).
+  double outlier_floor_xy = 0.05;
+  double outlier_floor_theta = 0.02;
 };
 
 // An arc the robust estimate switched off, with its normalised residual
