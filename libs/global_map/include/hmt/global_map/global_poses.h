@@ -82,9 +82,10 @@
 //    outlier_floor_xy^2, outlier_floor_theta^2) added to Sigma_ab + S: a
 //    fine alignment's covariance comes from the grids' Hessian and claims
 //    millimetres, while the area maps themselves are off by centimetres
-//    and hundredths of a radian (the Malaga log's area 11 aligned twice to
-//    area 12 with 2 mm covariances, 8.7 cm apart: chi2 200 without the
-//    floor, 3 with it). The floor is far below the errors this is for.
+//    and hundredths of a radian (on the Malaga log, TLCA aligned area 11 to
+//    area 12 twice, with 2 mm covariances, 8.7 cm apart: chi2 200 without
+//    the floor, 3 with it). The floor is far below the errors this is for.
+//    The floor is added in the arc's stored direction (from < to).
 //    With the eigen-decomposition of the residual covariance this is
 //    nu^T (A + F)^-1 nu, A = Sigma_ab (Sigma_ab - J P J^T)^-1 Sigma_ab =
 //    Sigma_ab + S and nu = A Sigma_ab^-1 e the arc's misfit against the

@@ -18,7 +18,10 @@
 //      points) and fewer than alignment.min_inlier_ratio of `from`'s
 //      occupied cells have one of `to`'s within match_distance at its
 //      solution, the two grids do not overlap where the closure puts them
-//      ("too few matches" and "inlier ratio" failures). An ill-conditioned
+//      (the alignment's "inlier ratio" failure, and most "too few matches"
+//      ones). The alignment's own threshold is used: it is the overlap it
+//      needs to trust its result, and a second one could only disagree with
+//      it. An ill-conditioned
 //      alignment (a corridor) or a nearly empty grid is no evidence either
 //      way and does not fail (a).
 //  (b) the loop: the pose of `to` in `from` composed along the shortest
