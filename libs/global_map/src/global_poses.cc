@@ -266,13 +266,12 @@ void least_squares(const std::vector<const Arc*>& arcs, const Unknowns& u,
   factorize(*cholesky, normal_equations(arcs, *poses, u).H);
 }
 
-// The normalised residual of one arc with the floor (see the header):
-// nu^T (A + F)^-1 nu, or nothing when the arc has no redundancy.
+// The normalised residual of one arc (see the header): e^T (Sigma_ab -
+// J P J^T)^-1 e, or nothing when the arc has no redundancy.
 std::optional<double> normalised_residual(const Arc& arc,
                                           const GlobalPoses& poses,
                                           const Unknowns& u,
-                                          const Cholesky& cholesky,
-                                          const Eigen::Matrix3d& floor) {
+                                          const Cholesky& cholesky) {
   const LinearisedArc l = linearise(poses.poses.at(arc.from).mean,
                                     poses.poses.at(arc.to).mean, arc.pose.mean);
   // The columns of H^-1 of the ends that are unknowns (not the root).
@@ -303,13 +302,8 @@ std::optional<double> normalised_residual(const Arc& arc,
   W = 0.5 * (W + W.transpose());
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(W);
   if (!(eig.eigenvalues().minCoeff() > kMinRedundancy)) return std::nullopt;
-  // With W = V D V^T: A = Sigma_ab + S = L W^-1 L^T, nu = L W^-1 L^-1 e.
-  const Eigen::Matrix3d& V = eig.eigenvectors();
-  const Eigen::Matrix3d W_inv =
-      V * eig.eigenvalues().cwiseInverse().asDiagonal() * V.transpose();
-  const Eigen::Matrix3d A = L * W_inv * L.transpose();
-  const Eigen::Vector3d nu = L * (W_inv * (Linv * l.residual));
-  return nu.dot((A + floor).ldlt().solve(nu));
+  const Eigen::Vector3d z = eig.eigenvectors().transpose() * (Linv * l.residual);
+  return z.cwiseAbs2().cwiseQuotient(eig.eigenvalues()).sum();
 }
 
 struct ArcTests {
@@ -318,20 +312,39 @@ struct ArcTests {
   double worst_chi2 = 0.0;
 };
 
+// The test of the loop arcs among `arcs` (see the header): in the test's
+// model, where every loop arc's covariance has the floor F added, fitted
+// by least squares from `poses`. `worst` is one of `arcs`.
 ArcTests test_loop_arcs(const HmtMap& map, const std::vector<const Arc*>& arcs,
                         const GlobalPoses& poses, const Unknowns& u,
-                        const Cholesky& cholesky, const PoseGraphOptions& options) {
+                        const PoseGraphOptions& options) {
   const double fxy = options.outlier_floor_xy * options.outlier_floor_xy;
   const double fth = options.outlier_floor_theta * options.outlier_floor_theta;
   const Eigen::Matrix3d floor = Eigen::Vector3d(fxy, fxy, fth).asDiagonal();
-  ArcTests t;
+  std::vector<Arc> model;
+  std::vector<char> loop;
+  model.reserve(arcs.size());
   for (const Arc* arc : arcs) {
-    if (is_chain_arc(map, *arc)) continue;
-    const std::optional<double> w = normalised_residual(*arc, poses, u, cholesky, floor);
+    model.push_back(*arc);
+    loop.push_back(!is_chain_arc(map, *arc));
+    if (loop.back()) model.back().pose.cov += floor;
+  }
+  std::vector<const Arc*> model_arcs;
+  for (const Arc& arc : model) model_arcs.push_back(&arc);
+  GlobalPoses fitted = poses;
+  double chi2_fitted = chi2_of(model_arcs, fitted);
+  PoseGraphReport scratch;  // the test's own fit is not the estimate's
+  Cholesky cholesky;
+  least_squares(model_arcs, u, options, &cholesky, &fitted, &chi2_fitted, &scratch);
+
+  ArcTests t;
+  for (size_t i = 0; i < model.size(); ++i) {
+    if (!loop[i]) continue;
+    const std::optional<double> w = normalised_residual(model[i], fitted, u, cholesky);
     if (!w) continue;
     ++t.tested;
     if (!t.worst || *w > t.worst_chi2) {
-      t.worst = arc;
+      t.worst = arcs[i];
       t.worst_chi2 = *w;
     }
   }
@@ -396,7 +409,7 @@ GlobalPoses optimize_poses(const HmtMap& map, AreaId root,
   if (options.robust) {
     std::set<std::pair<AreaId, AreaId>> off;
     for (bool first = true;; first = false) {
-      const ArcTests tests = test_loop_arcs(map, arcs, poses, u, cholesky, options);
+      const ArcTests tests = test_loop_arcs(map, arcs, poses, u, options);
       if (first) r.tested_arcs = tests.tested;
       r.max_arc_chi2 = tests.worst ? tests.worst_chi2 : 0.0;
       if (!tests.worst || tests.worst_chi2 <= options.outlier_chi2) break;
