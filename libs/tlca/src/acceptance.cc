@@ -25,16 +25,24 @@ void add_reason(ClosureReport& report, const std::string& why) {
 }
 
 // The map's arcs but the closure's, with what that arc held before this
-// crossing (if anything): the map in which the closure's loop is checked.
-// Only the graph matters to Dijkstra, so the areas are bare.
-topology::HmtMap without_closure(const topology::HmtMap& map, const ClosureRecord& closure) {
+// crossing (if anything): the map in which the closure's loop is checked,
+// with the floor added to every loop arc (every arc but an area's creating
+// arc), as the robust global estimate's test does. Only the graph matters
+// to Dijkstra, so the areas are bare.
+topology::HmtMap without_closure(const topology::HmtMap& map, const ClosureRecord& closure,
+                                 const Eigen::Matrix3d& floor) {
   topology::HmtMap graph;
   for (const topology::AreaId id : map.area_ids()) graph.add_area(id);
+  auto add = [&](topology::Arc arc) {
+    if (map.area(arc.to).frame.parent != arc.from && map.area(arc.from).frame.parent != arc.to)
+      arc.pose.cov += floor;
+    graph.set_arc(arc);
+  };
   const std::pair<topology::AreaId, topology::AreaId> closure_pair(
       std::min(closure.from, closure.to), std::max(closure.from, closure.to));
   for (const auto& [ends, arc] : map.arcs())
-    if (ends != closure_pair) graph.set_arc(arc);
-  if (closure.arc_before) graph.set_arc(*closure.arc_before);
+    if (ends != closure_pair) add(arc);
+  if (closure.arc_before) add(*closure.arc_before);
   return graph;
 }
 
@@ -42,8 +50,11 @@ topology::HmtMap without_closure(const topology::HmtMap& map, const ClosureRecor
 // measurement against it; an inconsistent measurement is inflated.
 void check_loop(const topology::HmtMap& map, const ClosureRecord& closure,
                 const TlcaOptions& options, ClosureReport& report) {
+  const double fxy = options.consistency_floor_xy * options.consistency_floor_xy;
+  const double fth = options.consistency_floor_theta * options.consistency_floor_theta;
+  const Eigen::Matrix3d floor = Eigen::Vector3d(fxy, fxy, fth).asDiagonal();
   const topology::PathTree tree =
-      topology::shortest_paths(without_closure(map, closure), closure.from);
+      topology::shortest_paths(without_closure(map, closure, floor), closure.from);
   if (!tree.reaches(closure.to)) {  // a bridge: no loop to check or bend
     if (!report.consistent) add_reason(report, "fused as measured: it closes no loop");
     return;
@@ -51,10 +62,7 @@ void check_loop(const topology::HmtMap& map, const ClosureRecord& closure,
   const topology::PathTree::Node& node = tree.nodes.at(closure.to);
   report.loop_hops = node.hops;
   const Eigen::Vector3d d = topology::difference(report.used.mean, node.pose.mean);
-  const double fxy = options.consistency_floor_xy * options.consistency_floor_xy;
-  const double fth = options.consistency_floor_theta * options.consistency_floor_theta;
-  const Eigen::Matrix3d S =
-      report.used.cov + node.pose.cov + Eigen::Matrix3d(Eigen::Vector3d(fxy, fxy, fth).asDiagonal());
+  const Eigen::Matrix3d S = report.used.cov + node.pose.cov + floor;
   report.loop_chi2 = d.dot(S.ldlt().solve(d));
   const bool loop_ok = report.loop_chi2 <= options.consistency_chi2;
   if (!loop_ok) {

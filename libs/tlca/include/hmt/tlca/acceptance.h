@@ -35,9 +35,11 @@
 //      ..theta^2) is the area maps' own error, which a fine alignment's
 //      covariance (the grids' Hessian: millimetres) leaves out: on the
 //      Malaga log area 11 aligned to area 12 twice, with 2 mm covariances,
-//      8.7 cm apart (chi2 200 without F, 3 with it). The same test as the
-//      robust global estimate's (global_map/global_poses.h), with the same
-//      defaults. When no other path exists the closure closes no loop:
+//      8.7 cm apart (chi2 200 without F, 3 with it). F is also added to
+//      every loop arc of the path (every arc but an area's creating arc)
+//      before it is composed, since those are alignments too. The same test
+//      as the robust global estimate's (global_map/global_poses.h), with the
+//      same defaults. When no other path exists the closure closes no loop:
 //      only (a).
 //
 // An inconsistent closure is still fused, with its covariance inflated to
