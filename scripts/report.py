@@ -81,6 +81,8 @@ SUMMARY_KEYS = [
     ("new_area_events", "new-area events"),
     ("transitions_evaluated", "transitions evaluated (TSBI)"),
     ("loop_closures_accepted", "loop closures accepted (TLCA)"),
+    ("loop_closures_inconsistent", "of which inconsistent with the grids or the map "
+     "(fused with an inflated covariance)"),
     ("max_hypotheses_alive", "most hypotheses alive at once"),
     ("hypotheses_at_end", "hypotheses alive at the end"),
     ("global_poses.method", "global area poses: method"),
@@ -88,6 +90,7 @@ SUMMARY_KEYS = [
     ("global_poses.initial_chi2", "global area poses: initial chi2"),
     ("global_poses.final_chi2", "global area poses: final chi2"),
     ("global_poses.converged", "global area poses: converged"),
+    ("global_poses.outlier_arcs", "global area poses: loop arcs switched off as gross errors"),
 ]
 
 

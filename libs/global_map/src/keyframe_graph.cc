@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <set>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -289,9 +290,12 @@ class Graph {
  public:
   Graph(const topology::HmtMap& map, const std::vector<AreaVisit>& visits,
         const StepSource& steps, const GlobalPoses& initial, const KeyframeGraphOptions& opt,
-        const metric_slam::MatcherOptions& matcher_opt, int threads)
+        const metric_slam::MatcherOptions& matcher_opt, int threads,
+        const std::vector<OutlierArc>& excluded)
       : map_(map), visits_(visits), steps_(steps), opt_(opt), matcher_(matcher_opt),
         table_(visits, steps), pool_(metric_slam::WorkerPool::threads_for(threads)) {
+    for (const OutlierArc& o : excluded)
+      excluded_.insert({std::min(o.from, o.to), std::max(o.from, o.to)});
     if (!map.has_area(initial.root) || !initial.poses.count(initial.root))
       throw std::invalid_argument("optimize_keyframe_graph: unknown root area " +
                                   std::to_string(initial.root));
@@ -422,6 +426,7 @@ class Graph {
     }
     // (c) the arcs between areas that are variables.
     for (const auto& kv : map_.arcs()) {
+      if (excluded_.count(kv.first)) continue;  // a closure the area fit switched off
       const auto from = area_var_.find(kv.first.first), to = area_var_.find(kv.first.second);
       if (from == area_var_.end() || to == area_var_.end()) continue;
       Edge c;
@@ -557,6 +562,7 @@ class Graph {
   }
 
   const topology::HmtMap& map_;
+  std::set<std::pair<AreaId, AreaId>> excluded_;  // (lo, hi), as the map keys its arcs
   const std::vector<AreaVisit>& visits_;
   const StepSource& steps_;
   const KeyframeGraphOptions& opt_;
@@ -580,8 +586,8 @@ KeyframeGraph optimize_keyframe_graph(const topology::HmtMap& map,
                                       const StepSource& steps, const GlobalPoses& initial,
                                       const KeyframeGraphOptions& options,
                                       const metric_slam::MatcherOptions& matcher,
-                                      int threads) {
-  Graph graph(map, visits, steps, initial, options, matcher, threads);
+                                      int threads, const std::vector<OutlierArc>& excluded) {
+  Graph graph(map, visits, steps, initial, options, matcher, threads, excluded);
   return graph.solve();
 }
 

@@ -271,6 +271,211 @@ TEST(OptimizePoses, DeterministicAcrossRuns) {
   }
 }
 
+// A ring of twelve areas around a block (radius 8 m), each frame heading
+// along the walk, as the robot maps it: area i created from area i - 1
+// (the chain of creating arcs, decimetre covariances from crossings) and
+// two fine-aligned loop closures at the seam, 11 -> 0 and 1 -> 11
+// (centimetre covariances).
+std::vector<Pose2D> ring_truth() {
+  std::vector<Pose2D> t;
+  for (int i = 0; i < 12; ++i) {
+    const double a = 2 * M_PI * i / 12;
+    t.emplace_back(8 * std::sin(a), 8 - 8 * std::cos(a), a);
+  }
+  return t;
+}
+
+const Eigen::Matrix3d kCrossingCov = diag(0.10, 0.10, 0.02);
+const Eigen::Matrix3d kAlignedCov = diag(0.03, 0.03, 0.005);
+
+// `rng` null: every arc's mean is exact.
+HmtMap ring_map(const std::vector<Pose2D>& truth, Random* rng) {
+  HmtMap m;
+  for (AreaId i = 0; i < truth.size(); ++i) {
+    topology::ReferenceFrame f;
+    if (i > 0) f.parent = i - 1;
+    m.add_area(i, f);
+  }
+  auto add = [&](AreaId a, AreaId b, const Eigen::Matrix3d& cov) {
+    const PoseGaussian exact(truth[b] - truth[a], cov);
+    m.add_arc_measurement(
+        a, b, rng ? PoseGaussian(topology::sample(exact, *rng), cov) : exact);
+  };
+  for (AreaId i = 0; i + 1 < truth.size(); ++i) add(i, i + 1, kCrossingCov);
+  add(11, 0, kAlignedCov);
+  add(1, 11, kAlignedCov);
+  return m;
+}
+
+// The false loop closure: area 9 taken for area 3 (a look-alike room across
+// the block), the measured pose of 3 in 9 off the truth by 3 m, 2 m and
+// 0.5 rad, with a fine alignment's small covariance.
+void plant_false_closure(HmtMap& m, const std::vector<Pose2D>& truth) {
+  m.add_arc_measurement(
+      9, 3, PoseGaussian((truth[3] - truth[9]) + Pose2D(3.0, -2.0, 0.5), kAlignedCov));
+}
+
+double worst_error_m(const GlobalPoses& g, const std::vector<Pose2D>& truth) {
+  double worst = 0.0;
+  for (AreaId i = 0; i < truth.size(); ++i)
+    worst = std::max(worst, (g.poses.at(i).mean - truth[i]).norm());
+  return worst;
+}
+
+TEST(RobustPoses, FalseClosureIsSwitchedOffAndTheMapStaysTrue) {
+  const std::vector<Pose2D> truth = ring_truth();
+  HmtMap m = ring_map(truth, nullptr);
+  plant_false_closure(m, truth);
+  PoseGraphOptions plain;
+  plain.robust = false;
+  PoseGraphReport plain_report;
+  const GlobalPoses bent = optimize_poses(m, 0, plain, &plain_report);
+  EXPECT_GT(worst_error_m(bent, truth), 1.0);
+  EXPECT_TRUE(plain_report.outliers.empty());
+  EXPECT_EQ(plain_report.tested_arcs, 0);
+
+  PoseGraphReport report;
+  const GlobalPoses robust = optimize_poses(m, 0, {}, &report);
+  EXPECT_LT(worst_error_m(robust, truth), 0.03);
+  for (AreaId i = 0; i < truth.size(); ++i)
+    EXPECT_LT(std::fabs(topology::difference(robust.poses.at(i).mean, truth[i])(2)), 0.005)
+        << "area " << i;
+  ASSERT_EQ(report.outliers.size(), 1u);
+  EXPECT_EQ(report.outliers[0].from, 3u);  // stored from < to
+  EXPECT_EQ(report.outliers[0].to, 9u);
+  EXPECT_GT(report.outliers[0].chi2, 10 * PoseGraphOptions{}.outlier_chi2);
+  // The three loop arcs (the chain is never tested); what is left fits.
+  EXPECT_EQ(report.tested_arcs, 3);
+  EXPECT_LT(report.max_arc_chi2, 1e-6);
+  EXPECT_LT(report.final_chi2, 1e-6);
+  EXPECT_TRUE(report.converged);
+  expect_root_identity(robust);
+  for (AreaId i = 1; i < truth.size(); ++i)
+    EXPECT_TRUE(topology::is_positive_definite(robust.poses.at(i).cov)) << "area " << i;
+}
+
+TEST(RobustPoses, EqualsThePlainEstimateWithoutTheOutlier) {
+  // With noisy arcs, the robust estimate of the map with the false closure
+  // is the plain estimate of the map without it: the outlier has no pull.
+  const std::vector<Pose2D> truth = ring_truth();
+  for (uint64_t seed = 1; seed <= 10; ++seed) {
+    Random rng(seed);
+    const HmtMap clean = ring_map(truth, &rng);
+    HmtMap m = clean;
+    plant_false_closure(m, truth);
+    PoseGraphReport report;
+    const GlobalPoses robust = optimize_poses(m, 0, {}, &report);
+    PoseGraphOptions plain;
+    plain.robust = false;
+    const GlobalPoses expected = optimize_poses(clean, 0, plain);
+    ASSERT_EQ(report.outliers.size(), 1u) << "seed " << seed;
+    for (AreaId i = 0; i < truth.size(); ++i) {
+      EXPECT_LT(topology::difference(robust.poses.at(i).mean, expected.poses.at(i).mean)
+                    .cwiseAbs().maxCoeff(), 1e-6)
+          << "seed " << seed << " area " << i;
+      EXPECT_LT((robust.poses.at(i).cov - expected.poses.at(i).cov).cwiseAbs().maxCoeff(), 1e-9)
+          << "seed " << seed << " area " << i;
+    }
+  }
+}
+
+TEST(RobustPoses, CorrectClosuresKeepThePlainEstimate) {
+  // No outlier: nothing is switched off and the result is the plain least
+  // squares bit for bit, on noisy rings and on the six-area loop whose
+  // arcs are all loop arcs (no frames, so no chain).
+  const std::vector<Pose2D> truth = ring_truth();
+  PoseGraphOptions plain;
+  plain.robust = false;
+  for (uint64_t seed = 1; seed <= 20; ++seed) {
+    Random rng(seed);
+    for (const HmtMap& m : {ring_map(truth, &rng), noisy_loop(square_loop_truth(), rng)}) {
+      PoseGraphReport report;
+      const GlobalPoses robust = optimize_poses(m, 0, {}, &report);
+      const GlobalPoses expected = optimize_poses(m, 0, plain);
+      EXPECT_TRUE(report.outliers.empty()) << "seed " << seed;
+      EXPECT_GT(report.tested_arcs, 0) << "seed " << seed;
+      EXPECT_GT(report.max_arc_chi2, 0.0) << "seed " << seed;
+      EXPECT_LE(report.max_arc_chi2, PoseGraphOptions{}.outlier_chi2) << "seed " << seed;
+      for (const auto& [id, p] : expected.poses) {
+        EXPECT_EQ(vec(robust.poses.at(id).mean), vec(p.mean)) << "seed " << seed;
+        EXPECT_EQ(robust.poses.at(id).cov, p.cov) << "seed " << seed;
+      }
+    }
+  }
+}
+
+TEST(RobustPoses, ChainArcsAreNeverSwitchedOff) {
+  // One loop whose misfit is the chain's fault (the crossing 5 -> 6 off by
+  // 5 m; the chain's own heading uncertainty makes 2 m plausible). In a single loop every arc is predicted by all the others, so
+  // geometry cannot say which is wrong; the chain is the metric filter's
+  // tracking and is trusted, the closure is the decision that can be wrong
+  // and is the one switched off. The estimate is then the chain itself.
+  const std::vector<Pose2D> truth = ring_truth();
+  HmtMap m;
+  for (AreaId i = 0; i < truth.size(); ++i) {
+    topology::ReferenceFrame f;
+    if (i > 0) f.parent = i - 1;
+    m.add_area(i, f);
+  }
+  for (AreaId i = 0; i + 1 < truth.size(); ++i) {
+    Pose2D mean = truth[i + 1] - truth[i];
+    if (i == 5) mean = mean + Pose2D(0.0, 5.0, 0.0);
+    EXPECT_TRUE(is_chain_arc(m, m.add_arc_measurement(i, i + 1, PoseGaussian(mean, kCrossingCov))));
+  }
+  const GlobalPoses chain = shortest_path_poses(m, 0);  // the chain alone
+  m.add_arc_measurement(11, 0, PoseGaussian(truth[0] - truth[11], kAlignedCov));
+  EXPECT_FALSE(is_chain_arc(m, *m.find_arc(0, 11)));
+  PoseGraphReport report;
+  const GlobalPoses g = optimize_poses(m, 0, {}, &report);
+  EXPECT_EQ(report.tested_arcs, 1);
+  ASSERT_EQ(report.outliers.size(), 1u);
+  EXPECT_EQ(report.outliers[0].from, 0u);
+  EXPECT_EQ(report.outliers[0].to, 11u);
+  EXPECT_LT(report.final_chi2, 1e-12);
+  EXPECT_EQ(report.max_arc_chi2, 0.0);  // nothing left to test
+  for (AreaId i = 0; i < truth.size(); ++i)
+    EXPECT_LT(topology::difference(g.poses.at(i).mean, chain.poses.at(i).mean).norm(), 1e-9);
+}
+
+TEST(RobustPoses, TheStatisticIsTheLoopsMahalanobisDistance) {
+  // In a ring with one loop arc, the arc's normalised residual at the
+  // estimate is the distance of its mean from the chain's composition
+  // under the sum of both covariances (and the floor): what TLCA tests
+  // before fusing a closure. Equal to first order: the estimate
+  // linearises at the optimum, the composition at the chain.
+  const std::vector<Pose2D> truth = ring_truth();
+  HmtMap m;
+  for (AreaId i = 0; i < truth.size(); ++i) {
+    topology::ReferenceFrame f;
+    if (i > 0) f.parent = i - 1;
+    m.add_area(i, f);
+  }
+  // Crossings 5 times more certain than kCrossingCov: a loop that a small
+  // misfit already fails, so the first-order terms dominate.
+  for (AreaId i = 0; i + 1 < truth.size(); ++i)
+    m.add_arc_measurement(i, i + 1, PoseGaussian(truth[i + 1] - truth[i], kCrossingCov / 25));
+  std::vector<AreaId> chain;
+  for (AreaId i = 0; i < 12; ++i) chain.push_back(i);
+  const PoseGaussian path = topology::compose_path(m, chain);  // 11 in 0
+  m.add_arc_measurement(
+      11, 0, PoseGaussian((truth[0] - truth[11]) + Pose2D(0.2, -0.16, 0.016), kAlignedCov));
+  // In the arc's stored direction, 0 -> 11, where the floor is added.
+  const PoseGaussian closure = m.arc(0, 11);
+  for (const auto& [fxy, fth] : {std::pair{0.0, 0.0}, std::pair{0.05, 0.02}}) {
+    PoseGraphOptions o;
+    o.outlier_floor_xy = fxy;
+    o.outlier_floor_theta = fth;
+    PoseGraphReport report;
+    optimize_poses(m, 0, o, &report);
+    const Eigen::Vector3d d = topology::difference(closure.mean, path.mean);
+    const Eigen::Matrix3d S =
+        closure.cov + path.cov + Eigen::Matrix3d(Eigen::Vector3d(fxy * fxy, fxy * fxy, fth * fth).asDiagonal());
+    const double expected = d.dot(S.inverse() * d);
+    EXPECT_GT(expected, 2.0);
+    EXPECT_NEAR(report.max_arc_chi2, expected, 0.01 * expected) << "floor " << fxy;
+  }
+}
+
 TEST(OptimizePoses, BadArgumentsThrow) {
   Random rng(1);
   const HmtMap m = noisy_loop(square_loop_truth(), rng);
@@ -283,6 +488,17 @@ TEST(OptimizePoses, BadArgumentsThrow) {
   options.relative_tolerance = 0.0;
   EXPECT_THROW(optimize_poses(m, 0, options), std::invalid_argument);
   options.relative_tolerance = NAN;
+  EXPECT_THROW(optimize_poses(m, 0, options), std::invalid_argument);
+  options = {};
+  options.outlier_chi2 = 0.0;
+  EXPECT_THROW(optimize_poses(m, 0, options), std::invalid_argument);
+  options.outlier_chi2 = INFINITY;
+  EXPECT_THROW(optimize_poses(m, 0, options), std::invalid_argument);
+  options = {};
+  options.outlier_floor_xy = -0.1;
+  EXPECT_THROW(optimize_poses(m, 0, options), std::invalid_argument);
+  options = {};
+  options.outlier_floor_theta = NAN;
   EXPECT_THROW(optimize_poses(m, 0, options), std::invalid_argument);
 }
 

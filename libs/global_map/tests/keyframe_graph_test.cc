@@ -192,6 +192,19 @@ TEST(KeyframeGraph, AConfidentWrongArcIsDownWeighted) {
   EXPECT_GE(g.report.down_weighted, 1u);
 }
 
+TEST(KeyframeGraph, AnArcTheAreaFitSwitchedOffIsLeftOut) {
+  // The same wrong arc, named as an outlier (as optimize_poses reports
+  // one): it is no constraint at all, and the path and matches place area 2.
+  const Scenario s(Pose2D(0.4, 0.0, 0.0), diag(0.03, 0.01));
+  const GlobalPoses initial = optimize_poses(s.map, 1);
+  const KeyframeGraph with = solve(s);
+  const KeyframeGraph without = optimize_keyframe_graph(
+      s.map, s.visits, s.steps(), initial, {}, metric_slam::MatcherOptions{}, 1,
+      {OutlierArc{2, 1, 100.0}});  // either direction names the arc
+  EXPECT_EQ(without.report.arcs + 1, with.report.arcs);
+  EXPECT_LT(position_error(without.areas.poses.at(2).mean, s.area2), 0.03);
+}
+
 TEST(KeyframeGraph, WithoutMatchesThePathStillJoinsTheAreas) {
   // The switching steps are known in both areas' frames, so even with no
   // scan matching the consecutive constraints outweigh a loose wrong arc.

@@ -60,6 +60,26 @@ nlohmann::json run_summary(const framework::HmtSystem& system) {
   j["new_area_events"] = st.new_area_events;
   j["transitions_evaluated"] = filter.transitions().size();
   j["loop_closures_accepted"] = st.loop_closures_accepted;
+  // Every closure TLCA fused, in order: whether fine alignment refined it,
+  // and whether it agreed with the grids and the map (tlca/acceptance.h;
+  // an inconsistent one was fused with an inflated covariance).
+  nlohmann::json closures = nlohmann::json::array();
+  size_t inconsistent = 0;
+  for (const hybrid::AcceptanceEvent& ev : filter.acceptances())
+    for (const tlca::ClosureReport& c : ev.closures) {
+      inconsistent += c.consistent ? 0 : 1;
+      closures.push_back({{"step", c.record.step},
+                          {"from", c.record.from},
+                          {"to", c.record.to},
+                          {"aligned", c.aligned},
+                          {"consistent", c.consistent},
+                          {"loop_hops", c.loop_hops},
+                          {"loop_chi2", c.loop_chi2},
+                          {"correction_m", c.correction_m},
+                          {"reason", c.reason}});
+    }
+  j["loop_closures_inconsistent"] = inconsistent;
+  j["loop_closures"] = closures;
   j["max_hypotheses_alive"] = st.max_hypotheses_alive;
   j["hypotheses_at_end"] = filter.hypotheses().size();
   j["forgotten_path_entries"] = st.forgotten_path_entries;
@@ -181,7 +201,8 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
     try {
       const auto tg = std::chrono::steady_clock::now();
       const global_map::KeyframeGraph graph = global_map::optimize_keyframe_graph(
-          map, visits, step_at, poses, opt.global_map.graph, opt.rbpf.matcher, opt.rbpf.threads);
+          map, visits, step_at, poses, opt.global_map.graph, opt.rbpf.matcher, opt.rbpf.threads,
+          report.outliers);
       traj = global_map::keyframe_trajectory(visits, graph.nodes, first_step, n);
       global = global_map::render_keyframe_grid(graph.nodes, step_at, opt.rbpf.resolution,
                                                 opt.rbpf.insertion);
@@ -246,11 +267,19 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
                      {"theta", sum.final_pose.theta}};
   j["areas"] = sum.areas;
   j["arcs"] = sum.arcs;
+  // The loop arcs the robust estimate switched off (false loop closures,
+  // global_poses.h): listed, so a map drawn without them says so.
+  nlohmann::json outliers = nlohmann::json::array();
+  for (const global_map::OutlierArc& o : report.outliers)
+    outliers.push_back({{"from", o.from}, {"to", o.to}, {"chi2", o.chi2}});
   j["global_poses"] = {{"method", pose_method},
                        {"iterations", report.iterations},
                        {"initial_chi2", report.initial_chi2},
                        {"final_chi2", report.final_chi2},
-                       {"converged", report.converged}};
+                       {"converged", report.converged},
+                       {"tested_arcs", report.tested_arcs},
+                       {"max_arc_chi2", report.max_arc_chi2},
+                       {"outlier_arcs", outliers}};
   j["global_map"] = {{"method", placed ? "keyframes" : "areas"}};
   if (placed) j["global_map"]["keyframe_graph"] = graph_json;
   write_text_atomically(out_dir + "/summary.json", j.dump(2) + "\n");

@@ -109,13 +109,16 @@ struct KeyframeGraph {
 // are the areas' archived maps). The scans are matched on `threads` threads
 // (0: one per core; the result is the same for any count). Throws std::invalid_argument for an
 // unknown root, visits of unknown areas or no keyframe at all, and
-// std::runtime_error if the normal equations cannot be factorised.
+// std::runtime_error if the normal equations cannot be factorised. Arcs in
+// `excluded` (the loop closures optimize_poses() switched off as gross
+// errors) are left out of (c).
 KeyframeGraph optimize_keyframe_graph(const topology::HmtMap& map,
                                       const std::vector<AreaVisit>& visits,
                                       const StepSource& steps,
                                       const GlobalPoses& initial,
                                       const KeyframeGraphOptions& options,
                                       const metric_slam::MatcherOptions& matcher,
-                                      int threads = 1);
+                                      int threads = 1,
+                                      const std::vector<OutlierArc>& excluded = {});
 
 }  // namespace hmt::global_map
