@@ -288,14 +288,20 @@ std::vector<Pose2D> ring_truth() {
 const Eigen::Matrix3d kCrossingCov = diag(0.10, 0.10, 0.02);
 const Eigen::Matrix3d kAlignedCov = diag(0.03, 0.03, 0.005);
 
-// `rng` null: every arc's mean is exact.
-HmtMap ring_map(const std::vector<Pose2D>& truth, Random* rng) {
+// One area per pose of `truth`, each created from the one before (no arcs).
+HmtMap ring_areas(const std::vector<Pose2D>& truth) {
   HmtMap m;
   for (AreaId i = 0; i < truth.size(); ++i) {
     topology::ReferenceFrame f;
     if (i > 0) f.parent = i - 1;
     m.add_area(i, f);
   }
+  return m;
+}
+
+// `rng` null: every arc's mean is exact.
+HmtMap ring_map(const std::vector<Pose2D>& truth, Random* rng) {
+  HmtMap m = ring_areas(truth);
   auto add = [&](AreaId a, AreaId b, const Eigen::Matrix3d& cov) {
     const PoseGaussian exact(truth[b] - truth[a], cov);
     m.add_arc_measurement(
@@ -411,12 +417,7 @@ TEST(RobustPoses, ChainArcsAreNeverSwitchedOff) {
   // tracking and is trusted, the closure is the decision that can be wrong
   // and is the one switched off. The estimate is then the chain itself.
   const std::vector<Pose2D> truth = ring_truth();
-  HmtMap m;
-  for (AreaId i = 0; i < truth.size(); ++i) {
-    topology::ReferenceFrame f;
-    if (i > 0) f.parent = i - 1;
-    m.add_area(i, f);
-  }
+  HmtMap m = ring_areas(truth);
   for (AreaId i = 0; i + 1 < truth.size(); ++i) {
     Pose2D mean = truth[i + 1] - truth[i];
     if (i == 5) mean = mean + Pose2D(0.0, 5.0, 0.0);
@@ -444,12 +445,7 @@ TEST(RobustPoses, TheStatisticIsTheLoopsMahalanobisDistance) {
   // before fusing a closure. Equal to first order: the estimate
   // linearises at the optimum, the composition at the chain.
   const std::vector<Pose2D> truth = ring_truth();
-  HmtMap m;
-  for (AreaId i = 0; i < truth.size(); ++i) {
-    topology::ReferenceFrame f;
-    if (i > 0) f.parent = i - 1;
-    m.add_area(i, f);
-  }
+  HmtMap m = ring_areas(truth);
   // Crossings 5 times more certain than kCrossingCov: a loop that a small
   // misfit already fails, so the first-order terms dominate.
   for (AreaId i = 0; i + 1 < truth.size(); ++i)
