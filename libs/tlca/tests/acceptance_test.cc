@@ -153,18 +153,10 @@ double arc_vs_path(const topology::HmtMap& map, const ClosureRecord& rec, const 
   return d.dot((arc.cov + path_cov).ldlt().solve(d));
 }
 
-// The checks are off in the shipped configuration (config/default.ini says
-// why); these tests switch them on.
-TlcaOptions checked() {
-  TlcaOptions o;
-  o.consistency_check = true;
-  return o;
-}
-
 TEST(ClosureConsistency, AClosureThatAgreesWithTheArcsIsFused) {
   Corridor c(4);
   const ClosureRecord rec = c.closure_into_1(Pose2D(0.05, -0.03, 0.01));
-  const ClosureReport r = accept_closure(c.map, rec, checked());
+  const ClosureReport r = accept_closure(c.map, rec, TlcaOptions{});
   EXPECT_TRUE(r.consistent) << r.reason;
   EXPECT_EQ(r.reason, "an area has no archived map");
   EXPECT_EQ(r.loop_hops, 3u);
@@ -181,7 +173,7 @@ TEST(ClosureConsistency, AClosureOffTheArcsIsInflatedAndCannotBendTheMap) {
   Corridor c(4);
   const PoseGaussian path = topology::compose_path(c.map, {4, 3, 2, 1});
   const ClosureRecord rec = c.closure_into_1(Pose2D(3.0, 2.0, 0.5));
-  const ClosureReport r = accept_closure(c.map, rec, checked());
+  const ClosureReport r = accept_closure(c.map, rec, TlcaOptions{});
   EXPECT_FALSE(r.consistent);
   EXPECT_NE(r.reason.find("inconsistent with the other path of 3 arcs"), std::string::npos)
       << r.reason;
@@ -213,9 +205,9 @@ TEST(ClosureConsistency, TheGateGrowsWithTheLoop) {
   const Pose2D error(1.0, 0.8, 0.08);
   Corridor short_loop(3), long_loop(21);
   const ClosureReport s =
-      accept_closure(short_loop.map, short_loop.closure_into_1(error), checked());
+      accept_closure(short_loop.map, short_loop.closure_into_1(error), TlcaOptions{});
   const ClosureReport l =
-      accept_closure(long_loop.map, long_loop.closure_into_1(error), checked());
+      accept_closure(long_loop.map, long_loop.closure_into_1(error), TlcaOptions{});
   EXPECT_FALSE(s.consistent) << s.loop_chi2;
   EXPECT_TRUE(l.consistent) << l.loop_chi2 << " " << l.reason;
   EXPECT_EQ(s.loop_hops, 2u);
@@ -233,7 +225,7 @@ TEST(ClosureConsistency, ChecksAgainstTheArcFromEarlierCrossings) {
   rec.arc_before = *c.map.find_arc(1, 2);
   rec.measurement = PoseGaussian(Pose2D(-4.0, 0.0, 0.0) + Pose2D(2.0, 1.5, 0.4), diag(0.03, 0.005));
   c.map.add_arc_measurement(2, 1, rec.measurement);
-  const ClosureReport r = accept_closure(c.map, rec, checked());
+  const ClosureReport r = accept_closure(c.map, rec, TlcaOptions{});
   EXPECT_FALSE(r.consistent);
   EXPECT_EQ(r.loop_hops, 1u);
   const topology::Arc* a = c.map.find_arc(1, 2);
@@ -262,7 +254,7 @@ TEST(ClosureConsistency, TheFloorAllowsForTheAreaMapsOwnError) {
     rec.measurement = PoseGaussian(Pose2D(-4.0, 0.0, 0.0) + Pose2D(-0.028, 0.082, 0.0007),
                                    diag(0.002, 0.001));
     c.map.add_arc_measurement(2, 1, rec.measurement);
-    TlcaOptions o = checked();
+    TlcaOptions o;
     o.consistency_floor_xy = floor_xy;
     o.consistency_floor_theta = floor_theta;
     return accept_closure(c.map, rec, o);
@@ -293,7 +285,7 @@ TEST(ClosureConsistency, GridsThatDoNotOverlapFailAlone) {
   rec.to = 1;
   rec.measurement = PoseGaussian(Pose2D(-3.0, -2.0, 0.0), diag(0.3, 0.1));
   v.map.add_arc_measurement(2, 1, rec.measurement);
-  const ClosureReport r = accept_closure(v.map, rec, checked());
+  const ClosureReport r = accept_closure(v.map, rec, TlcaOptions{});
   EXPECT_FALSE(r.aligned);
   EXPECT_FALSE(r.consistent);
   EXPECT_NE(r.reason.find("the grids do not overlap at the closure"), std::string::npos)
@@ -305,7 +297,7 @@ TEST(ClosureConsistency, GridsThatDoNotOverlapFailAlone) {
   TwoViews w;
   rec.measurement = PoseGaussian(w.origin2.inverse() + Pose2D(0.1, -0.07, 0.04), diag(0.1, 0.05));
   w.map.add_arc_measurement(2, 1, rec.measurement);
-  const ClosureReport ok = accept_closure(w.map, rec, checked());
+  const ClosureReport ok = accept_closure(w.map, rec, TlcaOptions{});
   EXPECT_TRUE(ok.aligned) << ok.reason;
   EXPECT_TRUE(ok.consistent) << ok.reason;
   EXPECT_EQ(ok.reason, "");
@@ -313,12 +305,12 @@ TEST(ClosureConsistency, GridsThatDoNotOverlapFailAlone) {
 
 TEST(TlcaOptions, ConsistencyKeysAreReadAndChecked) {
   Config cfg = Config::from_string(
-      "[tlca]\nconsistency_check = true\nconsistency_chi2 = 12.5\n"
+      "[tlca]\nconsistency_check = false\nconsistency_chi2 = 12.5\n"
       "consistency_floor_xy = 0\nconsistency_floor_theta = 0.1\n",
       "test");
   TlcaOptions o;
   o.load(cfg);
-  EXPECT_TRUE(o.consistency_check);  // the default is off
+  EXPECT_FALSE(o.consistency_check);
   EXPECT_EQ(o.consistency_chi2, 12.5);
   EXPECT_EQ(o.consistency_floor_xy, 0.0);
   EXPECT_EQ(o.consistency_floor_theta, 0.1);

@@ -84,9 +84,8 @@ struct TlcaOptions {
   AcceptancePolicy policy = AcceptancePolicy::kProbability;
   double accept_probability = 0.99;
   bool fine_alignment = true;
-  // The checks (a) and (b) above; off by default (config/default.ini says
-  // why: the whole-grid inlier ratio flags true closures of large areas).
-  bool consistency_check = false;
+  // The checks (a) and (b) above.
+  bool consistency_check = true;
   // The gate of (b) on the squared Mahalanobis distance (> 0): the 1 - 1e-6
   // quantile of chi-square with 3 degrees of freedom, since the arcs'
   // covariances are somewhat optimistic on real logs and a correct closure
