@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "hmt/topology/shortest_paths.h"
+#include "relative_pose_factor.h"
 
 namespace hmt::global_map {
 namespace {
@@ -21,9 +22,6 @@ namespace {
 using topology::Arc;
 using topology::HmtMap;
 using topology::PoseGaussian;
-
-using SparseMatrix = Eigen::SparseMatrix<double>;
-using Cholesky = Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>;
 
 // A Gauss-Newton step is a descent direction, so some fraction of it lowers
 // chi2 unless the estimate already sits at a minimum to rounding; halving
@@ -59,40 +57,7 @@ void require_valid(const PoseGraphOptions& options) {
         "optimize_poses: outlier_floor_xy and outlier_floor_theta must be >= 0 and finite");
 }
 
-// The residual of one arc and its Jacobians with respect to the poses of
-// its two ends, x_a = (t_a, theta_a) and x_b. With c, s = cos, sin theta_a
-// and d = t_b - t_a, the predicted relative pose is
-//   h = (c d_x + s d_y, -s d_x + c d_y, theta_b - theta_a),
-// so
-//   dh/dx_a = [ -c -s  -s d_x + c d_y ]    dh/dx_b = [  c  s  0 ]
-//             [  s -c  -c d_x - s d_y ]              [ -s  c  0 ]
-//             [  0  0        -1       ]              [  0  0  1 ]
-// (the wrap of the angle has derivative 1 wherever it is defined).
-struct LinearisedArc {
-  Eigen::Vector3d residual;
-  Eigen::Matrix3d d_from;
-  Eigen::Matrix3d d_to;
-};
-
-Eigen::Vector3d residual_of(const Pose2D& from, const Pose2D& to,
-                            const Pose2D& arc_mean) {
-  return topology::difference(to - from, arc_mean);
-}
-
-LinearisedArc linearise(const Pose2D& from, const Pose2D& to,
-                        const Pose2D& arc_mean) {
-  const double c = std::cos(from.theta), s = std::sin(from.theta);
-  const double dx = to.x - from.x, dy = to.y - from.y;
-  LinearisedArc l;
-  l.residual = residual_of(from, to, arc_mean);
-  l.d_from << -c, -s, -s * dx + c * dy,  //
-      s, -c, -c * dx - s * dy,           //
-      0, 0, -1;
-  l.d_to << c, s, 0,  //
-      -s, c, 0,       //
-      0, 0, 1;
-  return l;
-}
+// An arc's residual and Jacobians are those of relative_pose_factor.h.
 
 // The unknowns of the least-squares problem: every reachable area but the
 // root, ascending by id, three columns each. The root has no column (it is
@@ -141,53 +106,17 @@ double chi2_of(const std::vector<const Arc*>& arcs, const GlobalPoses& poses) {
   return sum;
 }
 
-// The normal equations H dx = -g of chi2 linearised at `poses`:
-// H = sum J^T Omega J and g = sum J^T Omega e over the arcs, with the
-// root's blocks left out.
-struct NormalEquations {
-  SparseMatrix H;
-  Eigen::VectorXd g;
-};
-
+// The normal equations H dx = -g of chi2 linearised at `poses` (the
+// root's blocks left out).
 NormalEquations normal_equations(const std::vector<const Arc*>& arcs,
                                  const GlobalPoses& poses, const Unknowns& u) {
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(arcs.size() * 4 * 9);
-  NormalEquations eq;
-  eq.g = Eigen::VectorXd::Zero(u.size());
-  auto add_block = [&](int row, int col, const Eigen::Matrix3d& block) {
-    if (row < 0 || col < 0) return;  // a block of the fixed root
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        triplets.emplace_back(row + i, col + j, block(i, j));
-  };
-  for (const Arc* arc : arcs) {
-    const LinearisedArc l = linearise(poses.poses.at(arc->from).mean,
-                                      poses.poses.at(arc->to).mean,
-                                      arc->pose.mean);
-    const Eigen::Matrix3d omega = information_of(*arc);
-    const int a = u.column.at(arc->from), b = u.column.at(arc->to);
-    const Eigen::Matrix3d Ja_t_omega = l.d_from.transpose() * omega;
-    const Eigen::Matrix3d Jb_t_omega = l.d_to.transpose() * omega;
-    add_block(a, a, Ja_t_omega * l.d_from);
-    add_block(a, b, Ja_t_omega * l.d_to);
-    add_block(b, a, Jb_t_omega * l.d_from);
-    add_block(b, b, Jb_t_omega * l.d_to);
-    if (a >= 0) eq.g.segment<3>(a) += Ja_t_omega * l.residual;
-    if (b >= 0) eq.g.segment<3>(b) += Jb_t_omega * l.residual;
-  }
-  // The same triplet positions every time, so the pattern (and CHOLMOD's
-  // symbolic analysis of it) is the same in every iteration.
-  eq.H.resize(u.size(), u.size());
-  eq.H.setFromTriplets(triplets.begin(), triplets.end());
-  return eq;
-}
-
-void factorize(Cholesky& cholesky, const SparseMatrix& H) {
-  cholesky.factorize(H);
-  if (cholesky.info() != Eigen::Success)
-    throw std::runtime_error(
-        "optimize_poses: the information matrix is not positive definite");
+  NormalEquationsBuilder eq(u.size(), arcs.size());
+  for (const Arc* arc : arcs)
+    eq.add(u.column.at(arc->from), u.column.at(arc->to),
+           linearise_relative_pose(poses.poses.at(arc->from).mean,
+                                   poses.poses.at(arc->to).mean, arc->pose.mean),
+           information_of(*arc));
+  return eq.build();
 }
 
 GlobalPoses moved(const GlobalPoses& poses, const Unknowns& u,
@@ -251,7 +180,7 @@ void least_squares(const std::vector<const Arc*>& arcs, const Unknowns& u,
   r->converged = false;
   for (int k = 0; k < options.max_iterations; ++k) {
     const NormalEquations eq = normal_equations(arcs, *poses, u);
-    factorize(*cholesky, eq.H);
+    factorize(*cholesky, eq.H, "optimize_poses");
     const Eigen::VectorXd step = cholesky->solve(-eq.g);
     ++r->iterations;
     const double before = *chi2_now;
@@ -263,7 +192,7 @@ void least_squares(const std::vector<const Arc*>& arcs, const Unknowns& u,
   }
   // The information matrix at the final estimate, for the covariances and
   // the outlier test.
-  factorize(*cholesky, normal_equations(arcs, *poses, u).H);
+  factorize(*cholesky, normal_equations(arcs, *poses, u).H, "optimize_poses");
 }
 
 // The normalised residual of one arc (see the header): e^T (Sigma_ab -
@@ -272,8 +201,8 @@ std::optional<double> normalised_residual(const Arc& arc,
                                           const GlobalPoses& poses,
                                           const Unknowns& u,
                                           const Cholesky& cholesky) {
-  const LinearisedArc l = linearise(poses.poses.at(arc.from).mean,
-                                    poses.poses.at(arc.to).mean, arc.pose.mean);
+  const LinearisedRelativePose l = linearise_relative_pose(
+      poses.poses.at(arc.from).mean, poses.poses.at(arc.to).mean, arc.pose.mean);
   // The columns of H^-1 of the ends that are unknowns (not the root).
   struct End {
     int column;
@@ -436,7 +365,7 @@ bool is_chain_arc(const HmtMap& map, const Arc& arc) {
 }
 
 Eigen::Vector3d arc_residual(const Arc& arc, const GlobalPoses& poses) {
-  return residual_of(poses.poses.at(arc.from).mean, poses.poses.at(arc.to).mean,
+  return relative_pose_residual(poses.poses.at(arc.from).mean, poses.poses.at(arc.to).mean,
                      arc.pose.mean);
 }
 

@@ -15,12 +15,10 @@
 
 #include "hmt/metric_slam/scan_points.h"
 #include "hmt/metric_slam/worker_pool.h"
+#include "relative_pose_factor.h"
 
 namespace hmt::global_map {
 namespace {
-
-using SparseMatrix = Eigen::SparseMatrix<double>;
-using Cholesky = Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>;
 
 // As in optimize_poses(): a Gauss-Newton step of the reweighted problem is
 // a descent direction of the robust cost, so some fraction of it lowers the
@@ -49,7 +47,7 @@ Eigen::Matrix3d diagonal_information(double std_xy, double std_theta) {
 }
 
 Eigen::Vector3d residual(const Edge& e, const std::vector<Pose2D>& x) {
-  return topology::difference(x[e.to] - x[e.from], e.mean);
+  return relative_pose_residual(x[e.from], x[e.to], e.mean);
 }
 
 // rho(s) and its derivative w(s) = rho'(s), the weight of the reweighted
@@ -85,64 +83,18 @@ double cost_of(const std::vector<Edge>& edges, const std::vector<Pose2D>& x,
   return sum;
 }
 
-// Jacobians of the residual with respect to x_from and x_to (the same
-// derivation as in global_poses.cc).
-void jacobians(const Pose2D& from, const Pose2D& to, Eigen::Matrix3d* d_from,
-               Eigen::Matrix3d* d_to) {
-  const double c = std::cos(from.theta), s = std::sin(from.theta);
-  const double dx = to.x - from.x, dy = to.y - from.y;
-  *d_from << -c, -s, -s * dx + c * dy,  //
-      s, -c, -c * dx - s * dy,          //
-      0, 0, -1;
-  *d_to << c, s, 0,  //
-      -s, c, 0,      //
-      0, 0, 1;
-}
-
-struct NormalEquations {
-  SparseMatrix H;
-  Eigen::VectorXd g;
-};
-
 // column[v]: first column of variable v, -1 for the fixed root.
 NormalEquations normal_equations(const std::vector<Edge>& edges, const std::vector<Pose2D>& x,
                                  const std::vector<int>& column, int unknowns,
                                  const KeyframeGraphOptions& opt) {
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(edges.size() * 36);
-  NormalEquations eq;
-  eq.g = Eigen::VectorXd::Zero(unknowns);
-  auto add_block = [&](int row, int col, const Eigen::Matrix3d& block) {
-    if (row < 0 || col < 0) return;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) triplets.emplace_back(row + i, col + j, block(i, j));
-  };
+  NormalEquationsBuilder eq(unknowns, edges.size());
   for (const Edge& e : edges) {
-    const Eigen::Vector3d r = residual(e, x);
-    const double w = robustify(r.dot(e.information * r), e, opt).weight;
-    Eigen::Matrix3d Ja, Jb;
-    jacobians(x[e.from], x[e.to], &Ja, &Jb);
-    const Eigen::Matrix3d omega = w * e.information;
-    const Eigen::Matrix3d Ja_t_omega = Ja.transpose() * omega;
-    const Eigen::Matrix3d Jb_t_omega = Jb.transpose() * omega;
-    const int a = column[static_cast<size_t>(e.from)], b = column[static_cast<size_t>(e.to)];
-    add_block(a, a, Ja_t_omega * Ja);
-    add_block(a, b, Ja_t_omega * Jb);
-    add_block(b, a, Jb_t_omega * Ja);
-    add_block(b, b, Jb_t_omega * Jb);
-    if (a >= 0) eq.g.segment<3>(a) += Ja_t_omega * r;
-    if (b >= 0) eq.g.segment<3>(b) += Jb_t_omega * r;
+    const LinearisedRelativePose l = linearise_relative_pose(x[e.from], x[e.to], e.mean);
+    const double w = robustify(l.residual.dot(e.information * l.residual), e, opt).weight;
+    eq.add(column[static_cast<size_t>(e.from)], column[static_cast<size_t>(e.to)], l,
+           w * e.information);
   }
-  eq.H.resize(unknowns, unknowns);
-  eq.H.setFromTriplets(triplets.begin(), triplets.end());
-  return eq;
-}
-
-void factorize(Cholesky& cholesky, const SparseMatrix& H) {
-  cholesky.factorize(H);
-  if (cholesky.info() != Eigen::Success)
-    throw std::runtime_error(
-        "optimize_keyframe_graph: the information matrix is not positive definite");
+  return eq.build();
 }
 
 std::vector<Pose2D> moved(const std::vector<Pose2D>& x, const std::vector<int>& column,
@@ -346,7 +298,7 @@ class Graph {
       cholesky.analyzePattern(normal_equations(edges, x_, column, unknowns, opt_).H);
       for (int it = 0; it < opt_.max_iterations; ++it) {
         const NormalEquations eq = normal_equations(edges, x_, column, unknowns, opt_);
-        factorize(cholesky, eq.H);
+        factorize(cholesky, eq.H, "optimize_keyframe_graph");
         const Eigen::VectorXd step = cholesky.solve(-eq.g);
         ++r.iterations;
         const double before = cost;
@@ -371,7 +323,8 @@ class Graph {
     KeyframeGraph out;
     out.areas.root = root_;
     out.areas.unreachable = unreachable_;
-    factorize(cholesky, normal_equations(edges, x_, column, unknowns, opt_).H);
+    factorize(cholesky, normal_equations(edges, x_, column, unknowns, opt_).H,
+              "optimize_keyframe_graph");
     for (size_t a = 0; a < area_ids_.size(); ++a) {
       topology::PoseGaussian g(x_[a], Eigen::Matrix3d::Zero());
       const int k = column[a];
