@@ -73,23 +73,28 @@ def ate(est, ref):
     return math.sqrt(float((e ** 2).mean())), float(e.max())
 
 
+def load_matched(est_path, ref_path):
+    """The matched positions of two trajectory files; SystemExit with the
+    reason when a file is bad or fewer than half of the poses match."""
+    est, ref = load_positions(est_path), load_positions(ref_path)
+    e, r = match(est, ref)
+    if len(e) < max(len(est), len(ref)) / 2:
+        raise SystemExit(f"ate.py: only {len(e)} of {len(est)} poses of {est_path} match a pose "
+                         f"of {ref_path} (by index or by timestamp within 0.01 s)")
+    return e, r
+
+
 def main(argv):
     args = [a for a in argv[1:] if a != "--json"]
     if len(args) != 2:
         print(__doc__, file=sys.stderr)
         return 2
     try:
-        est, ref = load_positions(args[0]), load_positions(args[1])
+        est, ref = load_matched(args[0], args[1])
     except SystemExit as e:
         print(e, file=sys.stderr)
         return 4
-    e, r = match(est, ref)
-    if len(e) < max(len(est), len(ref)) / 2:
-        print(f"ate.py: only {len(e)} of {len(est)} poses of {args[0]} match a pose of {args[1]} "
-              "(by index or by timestamp within 0.01 s)", file=sys.stderr)
-        return 4
-    rmse, worst = ate(e, r)
-    est = e
+    rmse, worst = ate(est, ref)
     if "--json" in argv:
         print(json.dumps({"count": len(est), "rmse_m": rmse, "max_m": worst}))
     else:

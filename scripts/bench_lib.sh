@@ -155,32 +155,32 @@ bench_ini_get() {
     END { if (!found) exit 1 }' "$1"
 }
 
+# bench_json_cell SCRIPT FORMAT TRAJ OTHER: runs scripts/SCRIPT TRAJ OTHER
+# --json and prints FORMAT (a Python expression over the result `r`), or
+# "FAIL (<its last line of error>)".
+bench_json_cell() {
+  local js
+  if ! js=$("${PYTHON:-/usr/bin/python3}" "$BENCH_REPO/scripts/$1" "$3" "$4" --json 2>&1); then
+    echo "FAIL (${js##*$'\n'})"
+    return 0
+  fi
+  "${PYTHON:-/usr/bin/python3}" -c '
+import json, sys
+r = json.loads(sys.argv[1])
+print(eval(sys.argv[2]))' "$js" "$2"
+}
+
 # bench_relation_cell TRAJ RELATIONS: "0.099 ± 0.121 m, 2.32° (144)" from
 # scripts/relation_error.py, or "FAIL (...)".
 bench_relation_cell() {
-  local js
-  if ! js=$("${PYTHON:-/usr/bin/python3}" "$BENCH_REPO/scripts/relation_error.py" "$1" "$2" --json 2>&1); then
-    echo "FAIL (${js##*$'\n'})"
-    return 0
-  fi
-  "${PYTHON:-/usr/bin/python3}" -c '
-import json, sys
-r = json.loads(sys.argv[1])
-print("%.3f ± %.3f m, %.2f° (%d)" % (r["trans_mean_m"], r["trans_std_m"], r["rot_mean_deg"], r["count"]))' "$js"
+  bench_json_cell relation_error.py \
+    '"%.3f ± %.3f m, %.2f° (%d)" % (r["trans_mean_m"], r["trans_std_m"], r["rot_mean_deg"], r["count"])' "$1" "$2"
 }
 
-# bench_ate_cell TRAJ REFERENCE: "0.097 (0.360)" (RMSE and max, metres) from
+# bench_ate_cell TRAJ REFERENCE: "0.097 (0.36)" (RMSE and max, metres) from
 # scripts/ate.py, or "FAIL (...)".
 bench_ate_cell() {
-  local js
-  if ! js=$("${PYTHON:-/usr/bin/python3}" "$BENCH_REPO/scripts/ate.py" "$1" "$2" --json 2>&1); then
-    echo "FAIL (${js##*$'\n'})"
-    return 0
-  fi
-  "${PYTHON:-/usr/bin/python3}" -c '
-import json, sys
-r = json.loads(sys.argv[1])
-print("%.3f (%.2f)" % (r["rmse_m"], r["max_m"]))' "$js"
+  bench_json_cell ate.py '"%.3f (%.2f)" % (r["rmse_m"], r["max_m"])' "$1" "$2"
 }
 
 # bench_machine: one line describing the machine.

@@ -13,7 +13,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 sys.path.insert(0, __file__.rsplit("/", 1)[0])
-from ate import align, load_positions, match  # noqa: E402
+from ate import align, load_matched  # noqa: E402
 
 
 def main(argv):
@@ -26,13 +26,9 @@ def main(argv):
         print(__doc__, file=sys.stderr)
         return 2
     try:
-        est, ref = load_positions(argv[1]), load_positions(argv[2])
+        est, ref = load_matched(argv[1], argv[2])
     except SystemExit as e:
         print(e, file=sys.stderr)
-        return 4
-    est, ref = match(est, ref)
-    if len(est) < 2:
-        print("plot_trajectory.py: fewer than two poses match (by index or timestamp)", file=sys.stderr)
         return 4
     est = align(est, ref)
     err = np.linalg.norm(est - ref, axis=1)
