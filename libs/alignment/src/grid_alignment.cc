@@ -72,6 +72,17 @@ class FixedIndex {
     return found;
   }
 
+  // Whether the fixed grid has observed anything (a cell with non-zero
+  // log-odds: free or occupied) within `radius` of (x, y).
+  bool observed(double x, double y, double radius) const {
+    const CellIndex lo = g_.cell_of(x - radius, y - radius);
+    const CellIndex hi = g_.cell_of(x + radius, y + radius);
+    for (int cy = lo.y; cy <= hi.y; ++cy)
+      for (int cx = lo.x; cx <= hi.x; ++cx)
+        if (g_.cell(CellIndex{cx, cy}).logodds != 0) return true;
+    return false;
+  }
+
   // The local shape around the point of cell `c`, from the points within
   // normal_radius: a wall (their scatter is thin, smallest over largest
   // eigenvalue below 0.1; `n` is the unit normal), a corner (at least 3
@@ -143,6 +154,7 @@ struct NormalEquations {
   double sq = 0.0;                              // sum |r|^2 (unweighted)
   int components = 0;                           // residual rows
   int pairs = 0;           // moving points with a fixed point in reach
+  int overlap = 0;         // moving points where the fixed grid has observed
   int residual_pairs = 0;  // ... of which on a wall or a corner (not isolated)
 };
 
@@ -156,8 +168,12 @@ NormalEquations build_normal_equations(const std::vector<Point2D>& moving,
     const Point2D x = pose.transform(p);
     Point2D q;
     CellIndex at;
-    if (!fixed.nearest(x.x, x.y, opt.match_distance, &q, &at)) continue;
+    if (!fixed.nearest(x.x, x.y, opt.match_distance, &q, &at)) {
+      if (fixed.observed(x.x, x.y, opt.match_distance)) ++ne.overlap;
+      continue;
+    }
     ++ne.pairs;
+    ++ne.overlap;
     // d(R p)/d theta
     const Eigen::Vector2d dr(-s * p.x - c * p.y, c * p.x - s * p.y);
     const Eigen::Vector2d e(x.x - q.x, x.y - q.y);
@@ -286,7 +302,9 @@ AlignmentResult align_grids(const grid::OccupancyGrid& moving,
 
   // Statistics and covariance at the solution.
   const NormalEquations ne = build_normal_equations(mpts, index, pose, opt);
-  res.inlier_ratio = static_cast<double>(ne.pairs) / static_cast<double>(mpts.size());
+  res.overlap_points = ne.overlap;
+  res.inlier_ratio =
+      ne.overlap > 0 ? static_cast<double>(ne.pairs) / static_cast<double>(ne.overlap) : 0.0;
   res.rmse = ne.residual_pairs > 0 ? std::sqrt(ne.sq / ne.residual_pairs) : 0.0;
   if (ne.residual_pairs < opt.min_points || ne.components <= 3) {
     res.reason = "too few matches: " + std::to_string(ne.residual_pairs) +

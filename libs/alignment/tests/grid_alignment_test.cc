@@ -247,10 +247,12 @@ TEST(GridAlignment, HalfTheRoomStillAligns) {
                                                  AlignmentOptions{}).moving_points);
 }
 
-TEST(GridAlignment, OverlappingHalvesAlignAndTheInlierThresholdApplies) {
+TEST(GridAlignment, OverlappingHalvesAlignAndOnlyTheOverlapCounts) {
   const Room& r = room();
   // Moving sees x < 13, fixed sees x > 6 (world): the shared strip holds
-  // about half of moving's points.
+  // about half of moving's points. Moving's points where fixed saw nothing
+  // are no evidence against the alignment: the inlier ratio is over the
+  // overlap, and stays as high as for the whole room.
   const grid::OccupancyGrid west =
       crop(r.moving, kTruth, [](const Point2D& p) { return p.x < 13.0; });
   const grid::OccupancyGrid east =
@@ -258,12 +260,34 @@ TEST(GridAlignment, OverlappingHalvesAlignAndTheInlierThresholdApplies) {
   const topology::PoseGaussian init(kTruth + Pose2D(-0.1, 0.11, -0.05), diag(0.2, 0.1));
   const AlignmentResult res = align_grids(west, east, init, AlignmentOptions{});
   expect_near_truth(res, kTruth);
-  EXPECT_GT(res.inlier_ratio, 0.3);
-  EXPECT_LT(res.inlier_ratio, 0.8);
+  EXPECT_GT(res.inlier_ratio, 0.8);
+  EXPECT_GT(res.overlap_points, 0.2 * res.moving_points);
+  EXPECT_LT(res.overlap_points, 0.8 * res.moving_points);
+}
 
+TEST(GridAlignment, WallsWhereTheFixedGridSawFreeSpaceLowerTheInlierRatio) {
+  const Room& r = room();
+  // The moving grid's room has furniture the fixed grid's has not: its walls
+  // fall where the fixed grid saw free space, and contradict it.
+  sim::World furnished = testing::room_world();
+  furnished.wall(8.5, 11.5, 12.5, 11.5);
+  furnished.wall(14.5, 3.0, 14.5, 11.0);
+  furnished.wall(1.5, 8.0, 5.5, 8.0);
+  furnished.wall(9.0, 2.0, 9.0, 6.5);
+  const grid::OccupancyGrid moving =
+      testing::scanned_grid(furnished, testing::room_tour_b(), kTruth, 2);
+  const topology::PoseGaussian init(kTruth + Pose2D(0.05, -0.05, 0.02), diag(0.2, 0.1));
+  const AlignmentResult plain = align_grids(r.moving, r.fixed, init, AlignmentOptions{});
+  AlignmentOptions lax;
+  lax.min_inlier_ratio = 0.0;
+  const AlignmentResult res = align_grids(moving, r.fixed, init, lax);
+  ASSERT_TRUE(plain.ok) << plain.reason;
+  ASSERT_TRUE(res.ok) << res.reason;
+  EXPECT_LT(res.inlier_ratio, plain.inlier_ratio - 0.1);
+  // ... and the threshold applies to it.
   AlignmentOptions strict;
-  strict.min_inlier_ratio = 0.9;
-  const AlignmentResult rej = align_grids(west, east, init, strict);
+  strict.min_inlier_ratio = 0.5 * (res.inlier_ratio + plain.inlier_ratio);
+  const AlignmentResult rej = align_grids(moving, r.fixed, init, strict);
   EXPECT_FALSE(rej.ok);
   EXPECT_NE(rej.reason.find("inlier ratio"), std::string::npos) << rej.reason;
 }

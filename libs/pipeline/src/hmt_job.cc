@@ -76,6 +76,8 @@ nlohmann::json run_summary(const framework::HmtSystem& system) {
                           {"loop_hops", c.loop_hops},
                           {"loop_chi2", c.loop_chi2},
                           {"correction_m", c.correction_m},
+                          {"inlier_ratio", c.inlier_ratio},
+                          {"overlap_points", c.overlap_points},
                           {"reason", c.reason}});
     }
   j["loop_closures_inconsistent"] = inconsistent;

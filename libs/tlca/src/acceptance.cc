@@ -130,6 +130,8 @@ ClosureReport align_closure(const topology::HmtMap& map, const ClosureRecord& cl
     // guess is `from`'s frame seen from `to`, the inverse of the measurement.
     const alignment::AlignmentResult r = alignment::align_grids(
         *from_map, *to_map, topology::inverse(closure.measurement), options.alignment);
+    report.inlier_ratio = r.inlier_ratio;
+    report.overlap_points = r.overlap_points;
     if (r.ok) {
       report.aligned = true;
       report.used = topology::inverse(r.pose);
@@ -143,7 +145,8 @@ ClosureReport align_closure(const topology::HmtMap& map, const ClosureRecord& cl
     // them apart where the closure puts them.
     const int min_points = options.alignment.min_points;
     if (options.consistency_check && r.moving_points >= min_points &&
-        r.fixed_points >= min_points && r.inlier_ratio < options.alignment.min_inlier_ratio) {
+        r.fixed_points >= min_points && r.overlap_points >= min_points &&
+        r.inlier_ratio < options.alignment.min_inlier_ratio) {
       report.consistent = false;
       add_reason(report, "the grids do not overlap at the closure: inlier ratio " +
                              format(r.inlier_ratio) + " below " +

@@ -16,8 +16,10 @@
 // or TSBI's when alignment failed) is checked before it is fused:
 //  (a) the grids: when the alignment ran (both areas archived, enough
 //      points) and fewer than alignment.min_inlier_ratio of `from`'s
-//      occupied cells have one of `to`'s within match_distance at its
-//      solution, the two grids do not overlap where the closure puts them
+//      occupied cells in the overlap (where `to` has observed anything,
+//      grid_alignment.h) have one of `to`'s within match_distance at its
+//      solution, the two grids contradict each other where the closure puts
+//      them
 //      (the alignment's "inlier ratio" failure, and most "too few matches"
 //      ones). The alignment's own threshold is used: it is the overlap it
 //      needs to trust its result, and a second one could only disagree with
@@ -121,6 +123,10 @@ struct ClosureReport {
   topology::PoseGaussian used; // the measurement fused into the arc
   double correction_m = 0.0;   // how far alignment moved `to`'s origin
   double correction_rad = 0.0;
+  // The alignment's inlier ratio over the overlap and the overlap's size
+  // (moving points; 0 when the alignment did not run).
+  double inlier_ratio = 0.0;
+  int overlap_points = 0;
   // (b): the arcs of the other path (0: none, only (a) applied) and the
   // squared Mahalanobis distance of the measurement from it.
   size_t loop_hops = 0;
