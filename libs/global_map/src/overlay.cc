@@ -11,8 +11,8 @@
 namespace hmt::global_map {
 namespace {
 
-void require_valid(const grid::MapImage& base, const OverlayOptions& o) {
-  if (base.image.empty() || base.image.channels() != 1)
+void require_valid(const grid::MapFrame& base, const OverlayOptions& o) {
+  if (base.width <= 0 || base.height <= 0)
     throw std::invalid_argument(
         "draw_topology_overlay: the base must be a non-empty grey image");
   if (!(base.resolution > 0.0) || !std::isfinite(base.resolution))
@@ -30,12 +30,12 @@ void require_valid(const grid::MapImage& base, const OverlayOptions& o) {
 
 // Origins stay at their exact (sub-pixel) place: the drawing functions take
 // continuous coordinates.
-grid::Pixel origin_pixel(const grid::MapImage& base,
+grid::Pixel origin_pixel(const grid::MapFrame& base,
                          const topology::PoseGaussian& pose) {
   return pixel_of(base, {pose.mean.x, pose.mean.y});
 }
 
-void draw_arcs(grid::Image& image, const grid::MapImage& base,
+void draw_arcs(grid::Image& image, const grid::MapFrame& base,
                const topology::HmtMap& map, const GlobalPoses& poses,
                const OverlayOptions& o) {
   for (const auto& [ends, arc] : map.arcs()) {
@@ -51,7 +51,7 @@ void draw_arcs(grid::Image& image, const grid::MapImage& base,
 // The 95% ellipse of the position block, magnified. In the image the y axis
 // points down, so an eigenvector (v_x, v_y) of the map frame is at angle
 // atan2(-v_y, v_x) there.
-void draw_ellipse(grid::Image& image, const grid::MapImage& base,
+void draw_ellipse(grid::Image& image, const grid::MapFrame& base,
                   const topology::PoseGaussian& pose, const OverlayOptions& o) {
   const Eigen::Matrix2d cov = pose.cov.topLeftCorner<2, 2>();
   if (!cov.allFinite()) return;
@@ -67,7 +67,7 @@ void draw_ellipse(grid::Image& image, const grid::MapImage& base,
                      o.line_thickness_px);
 }
 
-void draw_label(grid::Image& image, const grid::MapImage& base, AreaId id,
+void draw_label(grid::Image& image, const grid::MapFrame& base, AreaId id,
                 const topology::PoseGaussian& pose, const OverlayOptions& o) {
   const grid::Pixel at = origin_pixel(base, pose);
   if (!std::isfinite(at.x) || !std::isfinite(at.y)) return;
@@ -81,23 +81,10 @@ void draw_label(grid::Image& image, const grid::MapImage& base, AreaId id,
                     grid::digit_scale(o.font_scale), o.label_colour);
 }
 
-}  // namespace
-
-grid::Pixel pixel_of(const grid::MapImage& base, const Point2D& p) {
-  // Pixel column c covers x in [origin_x + c res, origin_x + (c + 1) res);
-  // row r covers the (rows - 1 - r)-th band of y from origin_y.
-  const double col = (p.x - base.origin_x) / base.resolution - 0.5;
-  const double row =
-      base.image.height() - (p.y - base.origin_y) / base.resolution - 0.5;
-  return {col, row};
-}
-
-grid::Image draw_topology_overlay(const grid::MapImage& base,
-                                  const topology::HmtMap& map,
-                                  const GlobalPoses& poses,
-                                  const OverlayOptions& options) {
-  require_valid(base, options);
-  grid::Image image = grid::grey_to_bgr(base.image);
+// Everything over the map, on the whole image or on a band of it.
+void draw_overlay(grid::Image& image, const grid::MapFrame& base,
+                  const topology::HmtMap& map, const GlobalPoses& poses,
+                  const OverlayOptions& options) {
   draw_arcs(image, base, map, poses, options);
   if (options.ellipse_scale > 0.0)
     for (const auto& [id, pose] : poses.poses)
@@ -108,7 +95,55 @@ grid::Image draw_topology_overlay(const grid::MapImage& base,
   for (const auto& [id, pose] : poses.poses)
     grid::fill_circle(image, origin_pixel(base, pose), options.origin_radius_px,
                       options.origin_colour);
+}
+
+// Rows per band of TopologyOverlayRows: a few megabytes in colour.
+constexpr int kBandRows = 256;
+
+}  // namespace
+
+grid::Pixel pixel_of(const grid::MapFrame& base, const Point2D& p) {
+  // Pixel column c covers x in [origin_x + c res, origin_x + (c + 1) res);
+  // row r covers the (rows - 1 - r)-th band of y from origin_y.
+  const double col = (p.x - base.origin_x) / base.resolution - 0.5;
+  const double row = base.height - (p.y - base.origin_y) / base.resolution - 0.5;
+  return {col, row};
+}
+
+grid::Pixel pixel_of(const grid::MapImage& base, const Point2D& p) {
+  return pixel_of(base.frame(), p);
+}
+
+grid::Image draw_topology_overlay(const grid::MapImage& base,
+                                  const topology::HmtMap& map,
+                                  const GlobalPoses& poses,
+                                  const OverlayOptions& options) {
+  if (base.image.channels() != 1)
+    throw std::invalid_argument("draw_topology_overlay: the base must be a grey image");
+  require_valid(base.frame(), options);
+  grid::Image image = grid::grey_to_bgr(base.image);
+  draw_overlay(image, base.frame(), map, poses, options);
   return image;
+}
+
+TopologyOverlayRows::TopologyOverlayRows(const grid::OccupancyGrid& grid,
+                                         const grid::MapFrame& frame,
+                                         const topology::HmtMap& map,
+                                         const GlobalPoses& poses,
+                                         const OverlayOptions& options)
+    : BandRows(frame.width, frame.height, 3, kBandRows),
+      grid_(grid),
+      frame_(frame),
+      map_(map),
+      poses_(poses),
+      options_(options) {
+  require_valid(frame, options);
+}
+
+grid::Image TopologyOverlayRows::make_band(int first_row, int rows) {
+  grid::Image band = grid::grey_to_bgr(grid::render_band(grid_, frame_, first_row, rows));
+  draw_overlay(band, frame_, map_, poses_, options_);
+  return band;
 }
 
 void write_color_png(const grid::Image& image, const std::string& path) {

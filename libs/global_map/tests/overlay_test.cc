@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <cstring>
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 #include <utility>
 
 #include "hmt/common/error.h"
+#include "hmt/grid/png.h"
 
 namespace hmt::global_map {
 namespace {
@@ -197,6 +199,37 @@ TEST(Overlay, WriteColorPngRoundTripsAndFailsCleanly) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/missing"));
   EXPECT_THROW(write_color_png(Image(), dir + "/empty.png"), OutputError);
   EXPECT_FALSE(std::filesystem::exists(dir + "/empty.png"));
+}
+
+TEST(Overlay, StreamedBandByBandItIsTheWholeImage) {
+  // A grid with walls, the two areas drawn over it, and an area whose label
+  // and ellipse straddle band boundaries: the PNG written band by band is
+  // byte for byte the one of the whole image.
+  grid::OccupancyGrid g(0.02);
+  for (int x = -60; x < 160; ++x) {
+    g.mutable_logodds({x, -90}) = 100;
+    g.mutable_logodds({x, 300}) = 100;
+    for (int y = -89; y < 300; y += 7) g.mutable_logodds({x, y}) = -60;
+  }
+  Scene s = two_areas();
+  s.map.add_area(2);
+  const Eigen::Matrix3d cov = Eigen::Vector3d(0.04, 0.01, 0.01).asDiagonal();
+  s.map.add_arc_measurement(1, 2, PoseGaussian(Pose2D(0.5, 4.6, 0.3), cov));
+  s.poses.poses.emplace(2, PoseGaussian(Pose2D(2.5, 5.12, 0.3), cov));
+  const grid::MapImage base = grid::render(g, 10);
+  ASSERT_GT(base.image.height(), 256);  // more than one band
+  const std::string dir = testing::TempDir() + "/hmt_overlay_stream";
+  std::filesystem::create_directories(dir);
+  write_color_png(draw_topology_overlay(base, s.map, s.poses), dir + "/whole.png");
+  TopologyOverlayRows rows(g, grid::map_frame(g, 10), s.map, s.poses);
+  grid::write_png_file(rows, dir + "/streamed.png");
+  auto bytes = [](const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(f)), {});
+  };
+  const std::string whole = bytes(dir + "/whole.png");
+  EXPECT_GT(whole.size(), 100u);
+  EXPECT_EQ(whole, bytes(dir + "/streamed.png"));
 }
 
 }  // namespace

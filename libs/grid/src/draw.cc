@@ -31,7 +31,7 @@ void put(Image& image, int x, int y, Bgr c) {
 // Paints row y from x0 to x1 (included; finite doubles, any size) clipped
 // to the image. Clamping happens in doubles, before any conversion to int.
 void span(Image& image, int y, double x0, double x1, Bgr c) {
-  if (y < 0 || y >= image.height()) return;
+  if (y < image.first_row() || y >= image.end_row()) return;
   x0 = std::max(x0, 0.0);
   x1 = std::min(x1, image.width() - 1.0);
   if (!(x0 <= x1)) return;  // also NaN
@@ -41,8 +41,8 @@ void span(Image& image, int y, double x0, double x1, Bgr c) {
 // As span(), down column x.
 void column_span(Image& image, int x, double y0, double y1, Bgr c) {
   if (x < 0 || x >= image.width()) return;
-  y0 = std::max(y0, 0.0);
-  y1 = std::min(y1, image.height() - 1.0);
+  y0 = std::max(y0, static_cast<double>(image.first_row()));
+  y1 = std::min(y1, image.end_row() - 1.0);
   if (!(y0 <= y1)) return;  // also NaN
   for (int y = static_cast<int>(y0); y <= static_cast<int>(y1); ++y) put(image, x, y, c);
 }
@@ -75,7 +75,7 @@ void fill_rect(Image& image, int x0, int y0, int x1, int y1, Bgr colour) {
   require_colour(image, "fill_rect");
   if (x0 > x1) std::swap(x0, x1);
   if (y0 > y1) std::swap(y0, y1);
-  for (int y = std::max(y0, 0); y <= std::min(y1, image.height() - 1); ++y)
+  for (int y = std::max(y0, image.first_row()); y <= std::min(y1, image.end_row() - 1); ++y)
     span(image, y, x0, x1, colour);
 }
 
@@ -136,8 +136,9 @@ void fill_circle(Image& image, Pixel centre, double radius, Bgr colour) {
   require_colour(image, "fill_circle");
   if (radius < 0.0) throw std::invalid_argument("fill_circle: radius must be >= 0");
   if (!finite(centre) || !std::isfinite(radius)) return;
-  const double y0 = std::max(std::ceil(centre.y - radius), 0.0);
-  const double y1 = std::min(std::floor(centre.y + radius), image.height() - 1.0);
+  const double y0 =
+      std::max(std::ceil(centre.y - radius), static_cast<double>(image.first_row()));
+  const double y1 = std::min(std::floor(centre.y + radius), image.end_row() - 1.0);
   for (double y = y0; y <= y1; y += 1.0) {
     const double dy = y - centre.y;
     const double dx = std::sqrt(std::max(radius * radius - dy * dy, 0.0));
@@ -190,8 +191,8 @@ void draw_digits(Image& image, const std::string& text, int x, int y, int scale,
     if (!rows) continue;
     const long long left = x + static_cast<long long>(i) * kGlyphAdvance * s;
     for (int gy = 0; gy < kGlyphHeight; ++gy) {
-      const long long r0 = std::max(top + gy * s, 0LL);
-      const long long r1 = std::min(top + (gy + 1) * s, static_cast<long long>(image.height()));
+      const long long r0 = std::max(top + gy * s, static_cast<long long>(image.first_row()));
+      const long long r1 = std::min(top + (gy + 1) * s, static_cast<long long>(image.end_row()));
       for (int gx = 0; gx < kGlyphWidth; ++gx)
         if (rows[gy] & (0x10 >> gx))
           for (long long r = r0; r < r1; ++r) {

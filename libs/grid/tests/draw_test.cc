@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -243,6 +244,53 @@ TEST(Draw, ShapesPartlyOutsideAreClipped) {
   expect_clipped([&](Image& img, int o) {
     draw_digits(img, "90817", -8 + o, 3 + o, 2, kInk);
   });
+}
+
+// Draws with `draw` on a whole image and on every band of it (bands of
+// `band_rows` rows): each band must hold exactly the whole image's rows.
+void expect_banded(const std::function<void(Image&)>& draw, int band_rows) {
+  constexpr int kW = 40, kH = 30;
+  Image whole = canvas(kW, kH);
+  draw(whole);
+  for (int first = 0; first < kH; first += band_rows) {
+    const int rows = std::min(band_rows, kH - first);
+    Image band = grey_to_bgr(Image::band(kW, kH, first, rows, 1, 205));
+    ASSERT_EQ(band.first_row(), first);
+    ASSERT_EQ(band.end_row(), first + rows);
+    ASSERT_EQ(band.pixels().size(), static_cast<size_t>(kW * rows * 3));
+    draw(band);
+    for (int y = first; y < first + rows; ++y)
+      for (int x = 0; x < kW; ++x)
+        ASSERT_EQ(band.bgr(x, y), whole.bgr(x, y)) << x << ", " << y << " band " << first;
+  }
+}
+
+TEST(Draw, DrawingBandByBandPaintsTheWholeImage) {
+  for (int band_rows : {1, 4, 7, 30}) {
+    SCOPED_TRACE(band_rows);
+    expect_banded([](Image& img) {
+      draw_line(img, {-30, -7}, {45, 22}, kInk);
+      draw_line(img, {-3.3, 40}, {12.6, -25}, kInk, 4);
+      fill_circle(img, {18.5, 12.2}, 6.3, kInk);
+      draw_ellipse(img, {20.3, 14.8}, 25, 9, 0.4, kInk, 3);
+      draw_circle(img, {7.5, 21.5}, 5, kInk);
+      draw_rect(img, -5, 3, 30, 40, kInk, 3);
+      fill_rect(img, 33, 2, 36, 27, kInk);
+      draw_digits(img, "90817", 2, 20, 2, kInk);
+    }, band_rows);
+  }
+}
+
+TEST(Draw, BandsOutsideTheImageAreRejected) {
+  EXPECT_THROW(Image::band(10, 10, -1, 3, 1), std::invalid_argument);
+  EXPECT_THROW(Image::band(10, 10, 8, 3, 1), std::invalid_argument);
+  EXPECT_THROW(Image::band(10, 10, 2, -1, 1), std::invalid_argument);
+  const Image b = Image::band(10, 10, 7, 3, 1);
+  EXPECT_EQ(b.height(), 10);
+  EXPECT_FALSE(b.contains(0, 6));
+  EXPECT_TRUE(b.contains(0, 7));
+  EXPECT_TRUE(b.contains(9, 9));
+  EXPECT_FALSE(b.contains(0, 10));
 }
 
 TEST(Draw, FarAwayAndNonFiniteShapesDrawNothing) {

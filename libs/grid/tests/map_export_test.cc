@@ -5,6 +5,10 @@
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+
+#include "hmt/common/error.h"
+#include "hmt/grid/png.h"
 
 namespace hmt::grid {
 namespace {
@@ -40,6 +44,79 @@ TEST(MapExport, PgmYamlAndPngAgree) {
   std::string yaml((std::istreambuf_iterator<char>(y)), {});
   EXPECT_NE(yaml.find("image: map.pgm"), std::string::npos);
   EXPECT_NE(yaml.find("resolution: 0.100000"), std::string::npos);
+}
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(f)), {});
+}
+
+// A grid over several bands of the writers, with occupied, free and unknown
+// cells and a log-odds of every value.
+OccupancyGrid varied_grid() {
+  OccupancyGrid g(0.05);
+  for (int y = -300; y < 420; y += 3)
+    for (int x = -40; x < 90; x += 2)
+      g.mutable_logodds({x, y}) = static_cast<LogOdds>(((x * 7 + y * 13) % 256) - 128);
+  return g;
+}
+
+TEST(MapExport, StreamedImagesAreByteForByteTheWholeOnes) {
+  const OccupancyGrid g = varied_grid();
+  const MapImage whole = render(g, 10);
+  const MapFrame f = map_frame(g, 10);
+  EXPECT_EQ(f.width, whole.image.width());
+  EXPECT_EQ(f.height, whole.image.height());
+  EXPECT_GT(f.height, 600);  // several bands
+  EXPECT_DOUBLE_EQ(f.origin_x, whole.origin_x);
+  EXPECT_DOUBLE_EQ(f.origin_y, whole.origin_y);
+  const std::string dir = testing::TempDir() + "/hmt_map_stream";
+  std::filesystem::create_directories(dir);
+  write_png(whole, dir + "/whole.png");
+  write_pgm_yaml(whole, dir + "/whole");
+  MapRows png_rows(g, f);
+  write_png_file(png_rows, dir + "/streamed.png");
+  MapRows pgm_rows(g, f);
+  write_pgm_yaml(pgm_rows, f, dir + "/streamed");
+  EXPECT_EQ(read_bytes(dir + "/whole.png"), read_bytes(dir + "/streamed.png"));
+  EXPECT_EQ(read_bytes(dir + "/whole.pgm"), read_bytes(dir + "/streamed.pgm"));
+  std::string yaml = read_bytes(dir + "/streamed.yaml");
+  EXPECT_EQ(yaml.find("image: streamed.pgm"), 0u);
+  const cv::Mat back = cv::imread(dir + "/streamed.png", cv::IMREAD_GRAYSCALE);
+  ASSERT_EQ(back.rows, f.height);
+  for (int y = 0; y < back.rows; y += 37)
+    for (int x = 0; x < back.cols; ++x)
+      ASSERT_EQ(back.at<uint8_t>(y, x), whole.image.at(x, y)) << x << ", " << y;
+}
+
+// A source that fails part-way, as one that runs out of memory would.
+class FailingRows : public BandRows {
+ public:
+  FailingRows() : BandRows(50, 40, 1, 8) {}
+
+ protected:
+  Image make_band(int first_row, int rows) override {
+    if (first_row >= 16) throw std::runtime_error("band failed");
+    return Image::band(50, 40, first_row, rows, 1, 128);
+  }
+};
+
+TEST(MapExport, AFailingSourceLeavesTheEarlierFileIntact) {
+  const std::string dir = testing::TempDir() + "/hmt_map_stream_fail";
+  std::filesystem::create_directories(dir);
+  const MapImage m = render(varied_grid(), 0);
+  write_png(m, dir + "/map.png");
+  const std::string before = read_bytes(dir + "/map.png");
+  FailingRows rows;
+  try {
+    write_png_file(rows, dir + "/map.png");
+    FAIL() << "no error";
+  } catch (const OutputError& e) {
+    EXPECT_NE(std::string(e.what()).find("band failed"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(read_bytes(dir + "/map.png"), before);
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
 }
 
 TEST(MapExport, UnwritableDirectoryIsOutputError) {

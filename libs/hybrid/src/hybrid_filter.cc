@@ -481,10 +481,19 @@ void HybridFilter::resume(const topology::Session& s) {
   normalise_and_prune();
 }
 
-topology::HmtMap HybridFilter::final_map() const {
+topology::HmtMap HybridFilter::final_map(
+    std::vector<tlca::ClosureReport>* pending_reports) const {
   const Hypothesis& h = best();
   topology::HmtMap m = h.map;
   m.archive_map(h.current_area(), h.filter.best().map);
+  // As an acceptance does (align, then apply): every closure aligned on the
+  // same snapshot, fused in order.
+  AlignmentJob job;
+  job.closures = h.pending_closures;
+  job.map = m;
+  const std::vector<tlca::ClosureReport> reports = align(job);
+  for (const tlca::ClosureReport& r : reports) tlca::apply_closure(m, r);
+  if (pending_reports) *pending_reports = reports;
   return m;
 }
 

@@ -102,6 +102,55 @@ TEST(HybridFilter, ResumedRunStillAlignsTheClosuresMadeBeforeTheSave) {
   EXPECT_TRUE(f.hypotheses()[0].pending_closures.empty());
 }
 
+TEST(HybridFilter, TheOutputMapFusesTheClosuresTheLogEndedTooEarlyToAccept) {
+  // The log ends while the best hypothesis still holds a closure TLCA has
+  // not accepted: the output map holds it checked and fused as acceptance
+  // would, and the filter's own state keeps it pending.
+  topology::Session s = saved_after(testing_ring::ring_run(7), 60);
+  topology::SessionHypothesis& h = s.hypotheses[0];
+  const std::vector<topology::AreaId> areas = h.map.area_ids();
+  ASSERT_GE(areas.size(), 2u);
+  topology::ClosureRecord c;
+  c.from = h.topo.current_area();
+  c.to = areas.front() == c.from ? areas.back() : areas.front();
+  c.step = s.steps - 5;
+  c.measurement = topology::PoseGaussian(Pose2D(1.0, -2.0, 0.5),
+                                         Eigen::Matrix3d::Identity() * 0.01);
+  if (const topology::Arc* before = h.map.find_arc(c.from, c.to)) c.arc_before = *before;
+  h.pending_closures = {c};
+  HybridFilter f(ring_options());
+  f.resume(s);
+  std::vector<tlca::ClosureReport> reports;
+  const topology::HmtMap m = f.final_map(&reports);
+  ASSERT_EQ(reports.size(), 1u);
+  EXPECT_EQ(reports[0].record.from, c.from);
+  EXPECT_EQ(reports[0].record.to, c.to);
+  // The arc is the hypothesis's own with the report applied.
+  topology::HmtMap expected = h.map;
+  tlca::apply_closure(expected, reports[0]);
+  ASSERT_TRUE(m.has_arc(c.from, c.to));
+  const topology::PoseGaussian fused = m.arc(c.from, c.to);
+  const topology::PoseGaussian want = expected.arc(c.from, c.to);
+  EXPECT_EQ(fused.mean.x, want.mean.x);
+  EXPECT_EQ(fused.mean.y, want.mean.y);
+  EXPECT_EQ(fused.cov, want.cov);
+  EXPECT_NE(fused.mean.x, h.map.has_arc(c.from, c.to) ? h.map.arc(c.from, c.to).mean.x
+                                                       : c.measurement.mean.x);
+  // The planted measurement is metres off the ring's geometry: the check
+  // must not have taken it as it was.
+  EXPECT_TRUE(!reports[0].consistent || reports[0].aligned) << reports[0].reason;
+  ASSERT_EQ(f.hypotheses()[0].pending_closures.size(), 1u);
+  EXPECT_EQ(f.session().hypotheses[0].pending_closures.size(), 1u);
+  // Without a pending closure the map is the hypothesis's own.
+  HybridFilter g(ring_options());
+  s.hypotheses[0].pending_closures.clear();
+  g.resume(s);
+  std::vector<tlca::ClosureReport> none{tlca::ClosureReport{}};
+  const topology::HmtMap plain = g.final_map(&none);
+  EXPECT_TRUE(none.empty());
+  EXPECT_EQ(plain.arcs().size(), h.map.arcs().size());
+}
+
 TEST(HybridFilter, Deterministic) {
   // Half the ring: a few new-area events.
   const auto run = testing_sim::simulate({{2, 2, 0}, {28, 2, 0}, {28, 20, 0}}, 0.3, 9, 0.03,

@@ -17,6 +17,7 @@
 #include "hmt/global_map/keyframe_map.h"
 #include "hmt/global_map/overlay.h"
 #include "hmt/grid/map_export.h"
+#include "hmt/grid/png.h"
 #include "hmt/framework/hmt_system.h"
 #include "hmt/io/tum.h"
 #include "hmt/pipeline/hmt_outputs.h"
@@ -51,6 +52,20 @@ std::vector<Pose2D> global_trajectory(const std::vector<hybrid::TrajectorySegmen
   return out;
 }
 
+nlohmann::json closure_json(const tlca::ClosureReport& c) {
+  return {{"step", c.record.step},
+          {"from", c.record.from},
+          {"to", c.record.to},
+          {"aligned", c.aligned},
+          {"consistent", c.consistent},
+          {"loop_hops", c.loop_hops},
+          {"loop_chi2", c.loop_chi2},
+          {"correction_m", c.correction_m},
+          {"inlier_ratio", c.inlier_ratio},
+          {"overlap_points", c.overlap_points},
+          {"reason", c.reason}};
+}
+
 // What the filter did (summary.json), from a finished system.
 nlohmann::json run_summary(const framework::HmtSystem& system) {
   const hybrid::HybridFilter& filter = system.filter();
@@ -68,17 +83,7 @@ nlohmann::json run_summary(const framework::HmtSystem& system) {
   for (const hybrid::AcceptanceEvent& ev : filter.acceptances())
     for (const tlca::ClosureReport& c : ev.closures) {
       inconsistent += c.consistent ? 0 : 1;
-      closures.push_back({{"step", c.record.step},
-                          {"from", c.record.from},
-                          {"to", c.record.to},
-                          {"aligned", c.aligned},
-                          {"consistent", c.consistent},
-                          {"loop_hops", c.loop_hops},
-                          {"loop_chi2", c.loop_chi2},
-                          {"correction_m", c.correction_m},
-                          {"inlier_ratio", c.inlier_ratio},
-                          {"overlap_points", c.overlap_points},
-                          {"reason", c.reason}});
+      closures.push_back(closure_json(c));
     }
   j["loop_closures_inconsistent"] = inconsistent;
   j["loop_closures"] = closures;
@@ -165,7 +170,12 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
       opt.framework.mode == framework::Mode::kLive ? "live" : "deterministic";
 
   // The most probable hypothesis's map and path; then the particles go.
-  const topology::HmtMap map = filter.final_map();
+  std::vector<tlca::ClosureReport> at_end;
+  const topology::HmtMap map = filter.final_map(&at_end);
+  // The output hypothesis's closures the log ended too early to accept,
+  // aligned for the output map (hybrid_filter.h).
+  j["loop_closures_at_end"] = nlohmann::json::array();
+  for (const tlca::ClosureReport& c : at_end) j["loop_closures_at_end"].push_back(closure_json(c));
   const std::vector<hybrid::TrajectorySegment> segments = filter.final_trajectory();
   HmtJobSummary sum;
   sum.loop_closures = filter.stats().loop_closures_accepted;
@@ -244,19 +254,25 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   sum.arcs = map.arcs().size();
   io::write_tum(out_dir + "/trajectory.tum", stamped);
 
-  const grid::MapImage img = grid::render(global, opt.output.map_margin);
+  // The images are rendered band by band as they are written: a large map
+  // is never held whole as a picture (grid/row_source.h).
+  const grid::MapFrame frame = grid::map_frame(global, opt.output.map_margin);
   if (opt.output.png) {
     sum.map_png = out_dir + "/map.png";
-    grid::write_png(img, sum.map_png);
-    global_map::write_color_png(global_map::draw_topology_overlay(img, map, poses),
-                                out_dir + "/map_topology.png");
+    grid::MapRows grey(global, frame);
+    grid::write_png_file(grey, sum.map_png);
+    global_map::TopologyOverlayRows overlay(global, frame, map, poses);
+    grid::write_png_file(overlay, out_dir + "/map_topology.png");
     make_directories(out_dir + "/areas");
     for (topology::AreaId id : map.area_ids())
       if (const auto& m = map.area(id).map)
         grid::write_png(grid::render(*m, opt.output.map_margin),
                         out_dir + "/areas/area_" + std::to_string(id) + ".png");
   }
-  if (opt.output.pgm) grid::write_pgm_yaml(img, out_dir + "/map");
+  if (opt.output.pgm) {
+    grid::MapRows grey(global, frame);
+    grid::write_pgm_yaml(grey, frame, out_dir + "/map");
+  }
   write_topology_json(out_dir + "/topology.json", map, poses);
   write_topology_dot(out_dir + "/topology.dot", map);
 

@@ -37,6 +37,7 @@ struct OverlayOptions {
 
 // Continuous pixel coordinates (column, row) of a map-frame point on the
 // image, integers at pixel centres; row 0 is the top (largest y).
+grid::Pixel pixel_of(const grid::MapFrame& base, const Point2D& p);
 grid::Pixel pixel_of(const grid::MapImage& base, const Point2D& p);
 
 // A BGR copy of `base` (its grey levels in all three channels) with the
@@ -51,6 +52,29 @@ grid::Image draw_topology_overlay(const grid::MapImage& base,
                                   const topology::HmtMap& map,
                                   const GlobalPoses& poses,
                                   const OverlayOptions& options = {});
+
+// draw_topology_overlay(grid::render(grid), ...) made band by band as it is
+// written (grid::write_png_file(RowSource&, ...)): the same pixels, without
+// holding the colour image whole, which for a large map is three times the
+// size of its grey one. `frame` is grid::map_frame(grid, margin); the grid,
+// map and poses must outlive the source. Throws std::invalid_argument as
+// draw_topology_overlay does.
+class TopologyOverlayRows : public grid::BandRows {
+ public:
+  TopologyOverlayRows(const grid::OccupancyGrid& grid, const grid::MapFrame& frame,
+                      const topology::HmtMap& map, const GlobalPoses& poses,
+                      const OverlayOptions& options = {});
+
+ protected:
+  grid::Image make_band(int first_row, int rows) override;
+
+ private:
+  const grid::OccupancyGrid& grid_;
+  grid::MapFrame frame_;
+  const topology::HmtMap& map_;
+  const GlobalPoses& poses_;
+  OverlayOptions options_;
+};
 
 // Writes a grey or BGR image as PNG, atomically (complete or absent, see
 // hmt/common/files.h; grid::write_png_file). Throws hmt::OutputError on

@@ -7,6 +7,8 @@
 // Every function draws on a 3-channel (BGR) image, throwing
 // std::invalid_argument for another, and clips: a shape partly or wholly
 // outside the image draws only its part inside, never writing out of bounds.
+// On a band (hmt/grid/image.h) the part inside is its rows: drawing every
+// band of an image paints the pixels that drawing the whole image would.
 // Geometry that is not finite (a point at infinity, NaN) draws nothing.
 // Nothing is anti-aliased: a pixel is painted in the colour or left alone.
 #pragma once

@@ -30,21 +30,35 @@ struct Bgr {
 // width x height pixels of 1 (grey) or 3 (B, G, R) channels, rows top to
 // bottom, each row's pixels left to right with their channels interleaved,
 // no padding. Pixels are addressed (x, y) = (column, row).
+//
+// A band: the rows [first_row, first_row + rows) of a width x height image,
+// the only ones it holds. Pixels keep the whole image's coordinates, and
+// drawing on a band (hmt/grid/draw.h) paints exactly the pixels that drawing
+// on the whole image would paint in those rows. So a large map is drawn and
+// written band by band (hmt/grid/row_source.h) without ever being held whole.
 class Image {
  public:
   Image() = default;  // empty: 0 x 0
   // Throws std::invalid_argument for a negative size or channels not 1 or 3.
   Image(int width, int height, int channels, uint8_t fill = 0);
+  // The band of `rows` rows from `first_row` of a width x height image;
+  // throws std::invalid_argument unless 0 <= first_row <= first_row + rows
+  // <= height.
+  static Image band(int width, int height, int first_row, int rows, int channels,
+                    uint8_t fill = 0);
 
   int width() const { return width_; }
   int height() const { return height_; }
   int channels() const { return channels_; }
+  // The rows held: [first_row(), end_row()); all of them but for a band.
+  int first_row() const { return first_row_; }
+  int end_row() const { return first_row_ + rows_; }
   bool empty() const { return width_ == 0 || height_ == 0; }
   bool contains(int x, int y) const {
-    return x >= 0 && y >= 0 && x < width_ && y < height_;
+    return x >= 0 && y >= first_row_ && x < width_ && y < end_row();
   }
 
-  // Unchecked access (x, y inside the image, c < channels()).
+  // Unchecked access (x, y held: contains(x, y); c < channels()).
   uint8_t* row(int y) { return pixels_.data() + offset(0, y); }
   const uint8_t* row(int y) const { return pixels_.data() + offset(0, y); }
   uint8_t& at(int x, int y, int c = 0) { return pixels_[offset(x, y) + c]; }
@@ -59,18 +73,21 @@ class Image {
 
  private:
   size_t offset(int x, int y) const {
-    return (static_cast<size_t>(y) * static_cast<size_t>(width_) +
+    return (static_cast<size_t>(y - first_row_) * static_cast<size_t>(width_) +
             static_cast<size_t>(x)) * static_cast<size_t>(channels_);
   }
 
   int width_ = 0;
   int height_ = 0;
   int channels_ = 1;
+  int first_row_ = 0;
+  int rows_ = 0;
   std::vector<uint8_t> pixels_;
 };
 
 // A 3-channel copy of a grey image (its level in B, G and R), to draw on in
-// colour. Throws std::invalid_argument if `grey` has not 1 channel.
+// colour (a band of a band). Throws std::invalid_argument if `grey` has not 1
+// channel.
 Image grey_to_bgr(const Image& grey);
 
 }  // namespace hmt::grid

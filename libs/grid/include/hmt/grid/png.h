@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "hmt/grid/image.h"
+#include "hmt/grid/row_source.h"
 
 namespace hmt::grid {
 
@@ -24,5 +25,10 @@ std::vector<uint8_t> encode_png(const Image& image, const std::string& path);
 // encode_png() written atomically to `path` (complete or absent, see
 // hmt/common/files.h). Throws hmt::OutputError on failure.
 void write_png_file(const Image& image, const std::string& path);
+// The same, encoding the rows as the source makes them, straight into the
+// file: neither the image nor its PNG bytes are ever held whole. Throws
+// hmt::OutputError (the source's own failure included); the file is then
+// left as it was.
+void write_png_file(RowSource& rows, const std::string& path);
 
 }  // namespace hmt::grid

@@ -178,8 +178,13 @@ class HybridFilter {
   size_t map_memory_bytes() const;
 
   // The most probable hypothesis's HMT map, its current area's map archived
-  // from its best particle.
-  topology::HmtMap final_map() const;
+  // from its best particle, and its loop closures not yet accepted (the log
+  // ended before the hypothesis dominated) fine-aligned, checked and fused
+  // as TLCA would at acceptance: this map is the one the run outputs, and a
+  // closure left with TSBI's coarse measurement would place the areas it
+  // joins decimetres off. Their reports go to `pending_reports` if given.
+  // The filter itself is unchanged (its session keeps every hypothesis).
+  topology::HmtMap final_map(std::vector<tlca::ClosureReport>* pending_reports = nullptr) const;
   // Its best particle's trajectory: the finished area visits and the current
   // one, in log order (one pose per step, each in its area's frame).
   std::vector<TrajectorySegment> final_trajectory() const;
