@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "hmt/common/error.h"
 #include "hmt/io/bag_writer.h"
@@ -36,8 +37,11 @@ int main(int argc, char** argv) {
       o.odometry = hmt::io::BagWriteOptions::Odometry::kTf;
     else
       throw hmt::UsageError("--odometry must be 'topic' or 'tf', not '" + odometry + "'");
-    const hmt::Log log = hmt::io::read_log(input);
-    hmt::io::write_bag(log, output, o);
+    // A CARMEN log's own odometry poses, rather than the increments summed.
+    std::vector<hmt::Pose2D> odom;
+    const bool carmen = hmt::io::detect_log_format(input) == hmt::io::LogFormat::kCarmen;
+    const hmt::Log log = carmen ? hmt::io::read_carmen(input, &odom) : hmt::io::read_log(input);
+    hmt::io::write_bag(log, output, o, carmen ? &odom : nullptr);
     std::printf("wrote %zu scans to %s\n", log.steps.size(), output.c_str());
   } catch (const hmt::Error& e) {
     std::fprintf(stderr, "log-to-bag: error: %s\n", e.what());

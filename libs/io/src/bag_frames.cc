@@ -13,7 +13,7 @@ std::string frame_name(const std::string& frame) {
   return !frame.empty() && frame[0] == '/' ? frame.substr(1) : frame;
 }
 
-Eigen::Isometry3d to_isometry(const BagTransform& t, const std::string& what) {
+Rigid to_rigid(const BagTransform& t, const std::string& what) {
   const Eigen::Quaterniond& q = t.rotation;
   const double norm = q.norm();
   if (!t.translation.allFinite() || !q.coeffs().allFinite() || !(norm > 1e-6))
@@ -22,19 +22,17 @@ Eigen::Isometry3d to_isometry(const BagTransform& t, const std::string& what) {
                      std::to_string(t.translation.y()) + " " +
                      std::to_string(t.translation.z()) + ", quaternion of norm " +
                      std::to_string(norm) + ")");
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = q.normalized().toRotationMatrix();
-  pose.translation() = t.translation;
-  return pose;
+  return {std::abs(norm - 1.0) > 1e-9 ? q.normalized() : q, t.translation};
 }
 
-Pose2D planar(const Eigen::Isometry3d& pose) {
-  const Eigen::Matrix3d& r = pose.linear();
-  return Pose2D(pose.translation().x(), pose.translation().y(),
-                std::atan2(r(1, 0), r(0, 0)));
+Pose2D planar(const Rigid& pose) {
+  const Eigen::Quaterniond& q = pose.rotation;
+  const double yaw = std::atan2(2.0 * (q.w() * q.z() + q.x() * q.y()),
+                                q.w() * q.w() + q.x() * q.x() - q.y() * q.y() - q.z() * q.z());
+  return Pose2D(pose.translation.x(), pose.translation.y(), yaw);
 }
 
-void TransformSeries::add(double stamp, const Eigen::Isometry3d& pose) {
+void TransformSeries::add(double stamp, const Rigid& pose) {
   samples_.emplace_back(stamp, pose);
 }
 
@@ -43,7 +41,7 @@ void TransformSeries::finish() {
                    [](const auto& a, const auto& b) { return a.first < b.first; });
 }
 
-std::optional<Eigen::Isometry3d> TransformSeries::at(double t) const {
+std::optional<Rigid> TransformSeries::at(double t) const {
   const auto it = std::lower_bound(
       samples_.begin(), samples_.end(), t,
       [](const auto& s, double v) { return s.first < v; });
@@ -52,11 +50,8 @@ std::optional<Eigen::Isometry3d> TransformSeries::at(double t) const {
   const auto& [t0, p0] = *std::prev(it);
   const auto& [t1, p1] = *it;
   const double a = (t - t0) / (t1 - t0);
-  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
-  const Eigen::Quaterniond q0(p0.linear()), q1(p1.linear());
-  out.linear() = q0.slerp(a, q1).toRotationMatrix();
-  out.translation() = (1.0 - a) * p0.translation() + a * p1.translation();
-  return out;
+  return Rigid{p0.rotation.slerp(a, p1.rotation),
+               (1.0 - a) * p0.translation + a * p1.translation};
 }
 
 FrameTree::FrameTree(const std::vector<BagTransform>& dynamic,
@@ -69,7 +64,7 @@ FrameTree::FrameTree(const std::vector<BagTransform>& dynamic,
                              "' -> '" + child + "' on " + topic;
     if (parent.empty() || child.empty() || parent == child)
       throw InputError(what + " does not name two frames");
-    const Eigen::Isometry3d pose = to_isometry(t, what);
+    const Rigid pose = to_rigid(t, what);
     auto [it, fresh] = links_.try_emplace(child);
     Link& link = it->second;
     if (fresh) {
@@ -105,7 +100,7 @@ std::vector<std::string> FrameTree::ancestors(const std::string& frame) const {
   return out;
 }
 
-std::optional<Eigen::Isometry3d> FrameTree::lookup(const std::string& parent,
+std::optional<Rigid> FrameTree::lookup(const std::string& parent,
                                                    const std::string& child,
                                                    double t, std::string& why) const {
   const std::vector<std::string> up_child = ancestors(child);
@@ -122,8 +117,8 @@ std::optional<Eigen::Isometry3d> FrameTree::lookup(const std::string& parent,
     return std::nullopt;
   }
   auto in_ancestor = [&](const std::vector<std::string>& chain,
-                         size_t n) -> std::optional<Eigen::Isometry3d> {
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+                         size_t n) -> std::optional<Rigid> {
+    Rigid pose;
     for (size_t k = 0; k < n; ++k) {
       const Link& link = links_.at(chain[k]);
       if (link.is_static) {

@@ -16,6 +16,29 @@
 
 namespace hmt::io::detail {
 
+// A rigid transform as tf keeps it: rotation quaternion and translation.
+// Quaternions are used as the bag gives them when their norm is 1 to
+// rounding (planar() reads the heading without normalising, so a written
+// yaw is read back bit for bit), normalised otherwise.
+struct Rigid {
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+
+  Rigid operator*(const Rigid& b) const {
+    return {rotation * b.rotation, translation + rotation * b.translation};
+  }
+  Rigid inverse() const {
+    const Eigen::Quaterniond q = rotation.conjugate();
+    return {q, -(q * translation)};
+  }
+  // The laser's z axis in its parent frame, z component: 1 level, -1
+  // upside down.
+  double up() const {
+    const Eigen::Quaterniond& q = rotation;
+    return 1.0 - 2.0 * (q.x() * q.x() + q.y() * q.y());
+  }
+};
+
 // tf2 drops a leading '/' from frame names (tf1 wrote "/base_link").
 std::string frame_name(const std::string& frame);
 
@@ -23,7 +46,7 @@ std::string frame_name(const std::string& frame);
 // keep their order; at() takes the first of them.
 class TransformSeries {
  public:
-  void add(double stamp, const Eigen::Isometry3d& pose);
+  void add(double stamp, const Rigid& pose);
   // Sorts the samples by stamp; call once after the last add().
   void finish();
   bool empty() const { return samples_.empty(); }
@@ -32,10 +55,10 @@ class TransformSeries {
   // The pose at `t`: the sample at t itself, else interpolated between the
   // samples around t (translation linearly, rotation by slerp); nullopt
   // outside [first_stamp, last_stamp].
-  std::optional<Eigen::Isometry3d> at(double t) const;
+  std::optional<Rigid> at(double t) const;
 
  private:
-  std::vector<std::pair<double, Eigen::Isometry3d>> samples_;
+  std::vector<std::pair<double, Rigid>> samples_;
 };
 
 class FrameTree {
@@ -48,7 +71,7 @@ class FrameTree {
   // The pose of `child` in `parent` at time t, composed along the tree;
   // nullopt with `why` saying what is missing (the frames are not
   // connected, or a link has no sample around t).
-  std::optional<Eigen::Isometry3d> lookup(const std::string& parent,
+  std::optional<Rigid> lookup(const std::string& parent,
                                           const std::string& child, double t,
                                           std::string& why) const;
 
@@ -63,7 +86,7 @@ class FrameTree {
   struct Link {
     std::string parent;
     bool is_static = false;
-    Eigen::Isometry3d fixed = Eigen::Isometry3d::Identity();
+    Rigid fixed;
     TransformSeries series;
   };
   // `frame` and its ancestors, up to the root.
@@ -73,10 +96,11 @@ class FrameTree {
 
 // A transform's rotation and translation as a rigid transform; throws
 // hmt::InputError (saying `what`) for a non-finite value or a zero
-// quaternion. The quaternion is normalised.
-Eigen::Isometry3d to_isometry(const BagTransform& t, const std::string& what);
+// quaternion.
+Rigid to_rigid(const BagTransform& t, const std::string& what);
 
-// The planar part: x, y and the heading of the x axis seen from above.
-Pose2D planar(const Eigen::Isometry3d& pose);
+// The planar part: x, y and the heading of the x axis seen from above,
+// atan2(2(wz + xy), w^2 + x^2 - y^2 - z^2) as tf2::getYaw() has it.
+Pose2D planar(const Rigid& pose);
 
 }  // namespace hmt::io::detail

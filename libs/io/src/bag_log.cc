@@ -41,7 +41,7 @@ class BagLog {
       const BagScan& s = scans[k];
       std::string why;
       const auto pose = odom.pose_at(s.stamp, why);
-      std::optional<Eigen::Isometry3d> mount;
+      std::optional<Rigid> mount;
       if (pose) mount = mounting(tree, odom.robot_frame, s, why);
       if (!pose || !mount) {
         if (first_skip.empty())
@@ -124,7 +124,7 @@ class BagLog {
   // Odometry as a function of time, and the frame it moves.
   struct Odometry {
     std::string robot_frame;
-    std::function<std::optional<Eigen::Isometry3d>(double, std::string&)> lookup;
+    std::function<std::optional<Rigid>(double, std::string&)> lookup;
     std::optional<Pose2D> pose_at(double t, std::string& why) const {
       const auto p = lookup(t, why);
       if (!p) return std::nullopt;
@@ -145,7 +145,7 @@ class BagLog {
       out.robot_frame = child.empty() ? frame_name(o_.base_frame) : child;
       for (size_t k = 0; k < msgs.size(); ++k)
         series_.add(msgs[k].stamp,
-                    to_isometry(msgs[k], "ROS bag '" + source_ + "': message " +
+                    to_rigid(msgs[k], "ROS bag '" + source_ + "': message " +
                                              std::to_string(k) + " on '" + topic + "'"));
       series_.finish();
       out.lookup = [this, topic](double t, std::string& why) {
@@ -176,27 +176,26 @@ class BagLog {
   }
 
   // The laser's pose in the robot frame at the scan's stamp.
-  std::optional<Eigen::Isometry3d> mounting(const FrameTree& tree, const std::string& robot,
+  std::optional<Rigid> mounting(const FrameTree& tree, const std::string& robot,
                                             const BagScan& s, std::string& why) const {
     if (o_.has_laser_pose) {
-      Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
-      p.linear() = Eigen::AngleAxisd(o_.laser_pose.theta, Eigen::Vector3d::UnitZ()).matrix();
-      p.translation() = Eigen::Vector3d(o_.laser_pose.x, o_.laser_pose.y, 0.0);
-      return p;
+      return Rigid{Eigen::Quaterniond(Eigen::AngleAxisd(o_.laser_pose.theta,
+                                                        Eigen::Vector3d::UnitZ())),
+                   Eigen::Vector3d(o_.laser_pose.x, o_.laser_pose.y, 0.0)};
     }
     const std::string laser = frame_name(s.frame_id);
     if (laser.empty()) {
       why = "the scan names no frame (header.frame_id); give [input] laser_pose";
       return std::nullopt;
     }
-    if (laser == robot) return Eigen::Isometry3d::Identity();
+    if (laser == robot) return Rigid{};
     auto p = tree.lookup(robot, laser, s.stamp, why);
     if (!p) why = "no laser mounting: " + why + " (give [input] laser_pose)";
     return p;
   }
 
   LaserScan beams(const BagScan& s, size_t k, const std::string& topic,
-                  const Eigen::Isometry3d& mount) const {
+                  const Rigid& mount) const {
     const std::string which = "scan " + std::to_string(k) + " on '" + topic + "'";
     const size_t n = s.ranges.size();
     if (n == 0) fail(which + " has no beams");
@@ -208,7 +207,7 @@ class BagLog {
         s.range_min > s.range_max)
       fail(which + " has range limits [" + std::to_string(s.range_min) + ", " +
            std::to_string(s.range_max) + "]");
-    const double up = mount.linear()(2, 2);  // the laser's z axis, seen in the robot frame
+    const double up = mount.up();  // the laser's z axis, seen in the robot frame
     if (std::abs(up) < std::cos(kBagMaxLaserTilt))
       fail(which + ": its frame '" + s.frame_id + "' is tilted " +
            std::to_string(std::acos(std::min(1.0, std::abs(up))) * 180.0 / M_PI) +

@@ -4,8 +4,10 @@
 //
 //  - one sensor_msgs/LaserScan per step on `scan_topic`, frame
 //    `laser_frame`, header.stamp the step's timestamp (to the nanosecond);
-//  - odometry at each scan's stamp: the increments accumulated from the
-//    origin, as nav_msgs/Odometry on `odom_topic` (frame_id odom_frame,
+//  - odometry at each scan's stamp: the given poses (e.g. a CARMEN log's own,
+//    read_carmen()), else the increments accumulated from the origin; the
+//    yaw is encoded so that the bag reader decodes it to exactly the same
+//    double. As nav_msgs/Odometry on `odom_topic` (frame_id odom_frame,
 //    child_frame_id base_frame), or as /tf transforms odom_frame ->
 //    base_frame (`odometry = kTf`);
 //  - the laser's mounting once on /tf_static, base_frame -> laser_frame;
@@ -18,6 +20,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "hmt/common/sensor_data.h"
 
@@ -36,6 +39,7 @@ struct BagWriteOptions {
 // the file cannot be written or the log cannot be represented (no steps,
 // scans with different mountings, a timestamp before 1970).
 void write_bag(const hmt::Log& log, const std::string& path,
-               const BagWriteOptions& options = {});
+               const BagWriteOptions& options = {},
+               const std::vector<Pose2D>* odometry = nullptr);
 
 }  // namespace hmt::io
