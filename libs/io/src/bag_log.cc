@@ -166,8 +166,10 @@ class BagLog {
     const std::vector<std::string> frames = tree.frames();
     const bool has = tree.connected(odom, base);
     if (!has)
-      fail("no odometry: no " + std::string(kOdometryType) +
-           " topic, and /tf and /tf_static do not connect '" + odom + "' to '" + base +
+      fail(std::string(o_.odom_topic == "tf" ? "no odometry in /tf ([input] odom_topic = tf)"
+                                             : "no odometry: no " + std::string(kOdometryType) +
+                                                   " topic") +
+           ", and /tf and /tf_static do not connect '" + odom + "' to '" + base +
            "' ([input] odom_frame, base_frame; frames there: " + join(frames) + ")");
     out.lookup = [&tree, odom, base](double t, std::string& why) {
       return tree.lookup(odom, base, t, why);
