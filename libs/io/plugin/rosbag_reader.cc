@@ -87,6 +87,9 @@ BagContents read_contents(const std::string& path) {
     throw InputError("ROS bag '" + path +
                      "' has no index: it was not closed (recording interrupted) "
                      "or is truncated; 'rosbag reindex' repairs it");
+  } catch (const rosbag::BagIOException& e) {
+    // Opening reads the header, then the index at the end of the file.
+    throw InputError("ROS bag '" + path + "' is truncated or damaged (rosbag: " + e.what() + ")");
   } catch (const std::exception& e) {
     throw InputError("ROS bag '" + path + "' cannot be opened: " + e.what());
   }

@@ -340,8 +340,21 @@ TEST(RosBag, TruncatedBag) {
     SCOPED_TRACE(part);
     const std::string p = dir + "/cut.bag";
     write_bytes(p, bytes.substr(0, static_cast<size_t>(bytes.size() * part)));
-    expect_input_error([&] { read_log(p); }, {p, "ROS bag"});
+    expect_input_error([&] { read_log(p); }, {p, "ROS bag", "truncated or damaged"});
   }
+}
+
+TEST(RosBag, UnindexedBag) {
+  // A recording that was interrupted: the header's index position is 0.
+  const std::string dir = scratch_dir();
+  std::string bytes = read_bytes(small_bag(dir + "/b.bag"));
+  const std::string field = "index_pos=";
+  const size_t at = bytes.find(field);
+  ASSERT_NE(at, std::string::npos);
+  bytes.replace(at + field.size(), 8, std::string(8, '\0'));
+  const std::string p = dir + "/unindexed.bag";
+  write_bytes(p, bytes);
+  expect_input_error([&] { read_log(p); }, {p, "has no index", "rosbag reindex"});
 }
 
 TEST(RosBag, GzipCompressedBag) {
