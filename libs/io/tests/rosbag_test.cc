@@ -357,6 +357,15 @@ TEST(RosBag, UnindexedBag) {
   expect_input_error([&] { read_log(p); }, {p, "has no index", "rosbag reindex"});
 }
 
+TEST(RosBag, MissingPluginIsAnInputErrorNamingIt) {
+  const std::string p = small_bag(scratch_dir() + "/b.bag");
+  ASSERT_EQ(setenv("HMT_IO_ROSBAG_PLUGIN", "/nonexistent/libhmt_io_rosbag.so", 1), 0);
+  expect_input_error([&] { read_log(p); },
+                     {p, "ROS bag reader plugin cannot be loaded", "/nonexistent/libhmt_io_rosbag.so"});
+  unsetenv("HMT_IO_ROSBAG_PLUGIN");
+  EXPECT_EQ(read_log(p).steps.size(), 3u);
+}
+
 TEST(RosBag, GzipCompressedBag) {
   const std::string dir = scratch_dir();
   const std::string p = dir + "/edmonton.bag.gz";

@@ -4,7 +4,7 @@
 // sensor_msgs/LaserScan, odometry as nav_msgs/Odometry and/or as transforms
 // on /tf (tf2_msgs/TFMessage), and the sensors' mountings on /tf_static. The
 // bag is read with Debian's rosbag storage library and ROS message headers,
-// through a plugin loaded only when a bag is read (src/rosbag_plugin.h), so
+// through a plugin loaded only when a bag is read (src/rosbag_plugin_abi.h), so
 // that reading other logs never maps ROS's libraries (and libpython, which
 // they pull in) into the process.
 //
