@@ -23,14 +23,16 @@ namespace {
 
 // Whether messages of this type are decoded, and if so whether the
 // connection's definition is the one the headers decode.
+bool is_tf_type(const std::string& datatype) {
+  return datatype == kTfMessageType || datatype == kTfV1MessageType;
+}
 bool decoded_type(const std::string& datatype) {
-  return datatype == kLaserScanType || datatype == kOdometryType ||
-         datatype == kTfMessageType;
+  return datatype == kLaserScanType || datatype == kOdometryType || is_tf_type(datatype);
 }
 std::string decoded_md5sum(const std::string& datatype) {
   if (datatype == kLaserScanType) return ros::message_traits::MD5Sum<sensor_msgs::LaserScan>::value();
   if (datatype == kOdometryType) return ros::message_traits::MD5Sum<nav_msgs::Odometry>::value();
-  if (datatype == kTfMessageType) return ros::message_traits::MD5Sum<tf2_msgs::TFMessage>::value();
+  if (is_tf_type(datatype)) return ros::message_traits::MD5Sum<tf2_msgs::TFMessage>::value();
   return "";
 }
 
@@ -117,8 +119,7 @@ BagContents read_contents(const std::string& path) {
     }
     for (auto& [name, t] : topics) {
       t.messages = rosbag::View(bag, rosbag::TopicQuery(name)).size();
-      const bool tf = t.datatype == kTfMessageType &&
-                      (name == kTfTopic || name == kTfStaticTopic);
+      const bool tf = is_tf_type(t.datatype) && (name == kTfTopic || name == kTfStaticTopic);
       if (t.definition_matches &&
           (t.datatype == kLaserScanType || t.datatype == kOdometryType || tf))
         wanted.insert(name);
@@ -140,7 +141,7 @@ BagContents read_contents(const std::string& path) {
       out.odometry[topic].push_back(
           to_transform(o->header, o->child_frame_id, o->pose.pose.position,
                        o->pose.pose.orientation));
-    } else if (type == kTfMessageType) {
+    } else if (is_tf_type(type)) {
       const auto tf = decode<tf2_msgs::TFMessage>(m, index);
       auto& dst = topic == kTfStaticTopic ? out.tf_static : out.tf;
       for (const auto& ts : tf->transforms) dst.push_back(to_transform(ts));

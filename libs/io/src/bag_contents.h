@@ -16,6 +16,9 @@ namespace hmt::io::detail {
 constexpr const char* kLaserScanType = "sensor_msgs/LaserScan";
 constexpr const char* kOdometryType = "nav_msgs/Odometry";
 constexpr const char* kTfMessageType = "tf2_msgs/TFMessage";
+// tf (ROS 1's first transform library) recorded the same message, by the
+// same definition, under its own name; older bags have it on /tf.
+constexpr const char* kTfV1MessageType = "tf/tfMessage";
 constexpr const char* kTfTopic = "/tf";
 constexpr const char* kTfStaticTopic = "/tf_static";
 

@@ -6,6 +6,7 @@
 
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
+#include <rosbag/view.h>
 #include <sensor_msgs/LaserScan.h>
 #include <std_msgs/String.h>
 #include <tf2_msgs/TFMessage.h>
@@ -18,6 +19,26 @@
 #include "hmt/io/log_reader.h"
 #include "hmt/io/rosbag.h"
 #include "io_test_util.h"
+
+// tf's tfMessage: tf2_msgs/TFMessage under tf's own name, as older bags
+// have it on /tf.
+struct TfV1Message : tf2_msgs::TFMessage {};
+
+namespace ros::message_traits {
+template <>
+struct MD5Sum<TfV1Message> : MD5Sum<tf2_msgs::TFMessage> {};
+template <>
+struct DataType<TfV1Message> {
+  static const char* value() { return "tf/tfMessage"; }
+  static const char* value(const TfV1Message&) { return value(); }
+};
+template <>
+struct Definition<TfV1Message> : Definition<tf2_msgs::TFMessage> {};
+}  // namespace ros::message_traits
+namespace ros::serialization {
+template <>
+struct Serializer<TfV1Message> : Serializer<tf2_msgs::TFMessage> {};
+}  // namespace ros::serialization
 
 namespace hmt::io {
 namespace {
@@ -62,6 +83,40 @@ TEST(RosBag, TfOdometryReadsAsTheCarmenLog) {
   o.odometry = BagWriteOptions::Odometry::kTf;
   const auto e = edmonton_bag(scratch_dir(), o);
   expect_same_as_carmen(read_log(e.bag), e.carmen);
+}
+
+TEST(RosBag, OlderBagsTfMessages) {
+  // The Edmonton bag with odometry on /tf, rewritten with tf's tfMessage.
+  BagWriteOptions o;
+  o.odometry = BagWriteOptions::Odometry::kTf;
+  const std::string dir = scratch_dir();
+  const auto e = edmonton_bag(dir, o);
+  const std::string p = dir + "/tf1.bag";
+  {
+    rosbag::Bag in, out;
+    in.open(e.bag, rosbag::bagmode::Read);
+    out.open(p, rosbag::bagmode::Write);
+    size_t transforms = 0;
+    for (const rosbag::MessageInstance& m : rosbag::View(in)) {
+      if (auto tf = m.instantiate<tf2_msgs::TFMessage>()) {
+        TfV1Message v1;
+        v1.transforms = tf->transforms;
+        out.write(m.getTopic(), m.getTime(), v1);
+        ++transforms;
+      } else {
+        out.write(m.getTopic(), m.getTime(), m);
+      }
+    }
+    EXPECT_GT(transforms, 300u);
+  }
+  rosbag::Bag check;
+  check.open(p, rosbag::bagmode::Read);
+  for (const rosbag::ConnectionInfo* c : rosbag::View(check).getConnections()) {
+    if (c->topic == "/tf" || c->topic == "/tf_static") {
+      EXPECT_EQ(c->datatype, "tf/tfMessage");
+    }
+  }
+  expect_same_as_carmen(read_log(p), e.carmen);
 }
 
 TEST(RosBag, OtherFrameAndTopicNamesThroughTheOptions) {

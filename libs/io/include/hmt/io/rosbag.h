@@ -17,7 +17,8 @@
 //    CARMEN reader does. Odometry comes from the nav_msgs/Odometry topic
 //    (robot frame: its child_frame_id, else base_frame), or else from /tf:
 //    the chain of transforms odom_frame -> ... -> base_frame, every link
-//    interpolated at the stamp (static ones from /tf_static as they are).
+//    interpolated at the stamp (static ones from /tf_static as they are;
+//    tf2_msgs/TFMessage, or tf/tfMessage as older bags have it).
 //  - the laser's mounting: the transform robot frame -> the scan's
 //    header.frame_id in /tf and /tf_static at the stamp, composed along the
 //    chain, or `laser_pose` when given. A laser mounted upside down (its z
