@@ -55,6 +55,7 @@ int run(const Args& a) {
 
   hmt::grouping::PartitionRequest req;
   req.log_path = a.input.empty() ? job.input.log : a.input;
+  req.bag = job.input.bag;
   if (req.log_path.empty())
     throw hmt::UsageError("no input log: give --input or set [input] log in " + a.config);
   req.poses_path = a.poses;

@@ -38,7 +38,7 @@ int run(const std::string& config_path, const std::string& input,
   std::unique_ptr<hmt::topology::Session> session;
   if (!resume_map.empty())
     session = std::make_unique<hmt::topology::Session>(hmt::topology::load_session(resume_map));
-  const hmt::Log log = opt.input.select(hmt::io::read_log(opt.input.log));
+  const hmt::Log log = opt.input.select(hmt::io::read_log(opt.input.log, opt.input.bag));
   std::fprintf(stderr, "hmt-slam: %zu scans; %d particles\n", log.steps.size(),
                opt.rbpf.particles);
   if (hmt::area::resolve_tau(opt.area, log))
@@ -67,7 +67,7 @@ int run(const std::string& config_path, const std::string& input,
 }
 
 int convert(const std::string& input, const std::string& output,
-            const std::string& format) {
+            const std::string& format, const std::vector<std::string>& sets) {
   hmt::io::RawlogFormat f;
   if (format == "sf")
     f = hmt::io::RawlogFormat::kActionsSensoryFrames;
@@ -75,7 +75,13 @@ int convert(const std::string& input, const std::string& output,
     f = hmt::io::RawlogFormat::kObservationsOnly;
   else
     throw hmt::UsageError("--format must be 'sf' or 'obs', not '" + format + "'");
-  const hmt::Log log = hmt::io::read_log(input);
+  // A bag's topics and frames: the [input] keys, given with --set.
+  hmt::Config cfg;
+  for (const auto& s : sets) cfg.apply_override(s);
+  hmt::io::BagOptions bag;
+  bag.load(cfg, "input");
+  cfg.check_all_used();
+  const hmt::Log log = hmt::io::read_log(input, bag);
   hmt::io::write_rawlog(log, output, f);
   std::printf("wrote %zu scans to %s\n", log.steps.size(), output.c_str());
   return 0;
@@ -101,7 +107,7 @@ int main(int argc, char** argv) {
       ->required();
   for (CLI::App* cmd : {run_cmd, metric_cmd, resume_cmd}) {
     cmd->add_option("--config,-c", config, "INI configuration file")->required();
-    cmd->add_option("--input,-i", input, "log (.rawlog, .log, .log.gz); overrides [input] log");
+    cmd->add_option("--input,-i", input, "log (.rawlog, .log, .log.gz, .bag); overrides [input] log");
     cmd->add_option("--out,-o", out, "output folder")->capture_default_str();
     cmd->add_option("--set", sets, "override a key: SECTION.key=value (repeatable)");
     cmd->add_flag("--quiet,-q", quiet, "no progress output");
@@ -114,6 +120,9 @@ int main(int argc, char** argv) {
   conv_cmd->add_option("--format,-f", format,
                        "sf: Actions/SensoryFrame (what rbpf-slam reads); obs: observations only")
       ->capture_default_str();
+  std::vector<std::string> conv_sets;
+  conv_cmd->add_option("--set", conv_sets,
+                       "a ROS bag's [input] key: input.scan_topic=/scan ... (repeatable)");
 
   try {
     app.parse(argc, argv);
@@ -124,7 +133,7 @@ int main(int argc, char** argv) {
     if (*run_cmd) return run(config, input, out, sets, quiet, true);
     if (*metric_cmd) return run(config, input, out, sets, quiet, false);
     if (*resume_cmd) return run(config, input, out, sets, quiet, true, resume_map);
-    if (*conv_cmd) return convert(conv_in, conv_out, format);
+    if (*conv_cmd) return convert(conv_in, conv_out, format, conv_sets);
   } catch (const hmt::Error& e) {
     std::fprintf(stderr, "hmt-slam: error: %s\n", e.what());
     return static_cast<int>(e.code());

@@ -289,7 +289,7 @@ PartitionSummary run_partition(const PartitionJobOptions& options,
   write_text_atomically(req.out_dir + "/config_effective.ini", req.effective_config);
 
   auto t = Clock::now();
-  const Log log = io::read_log(req.log_path);
+  const Log log = io::read_log(req.log_path, req.bag);
   area::resolve_tau(opt.area, log);  // tau = auto: from the sensor's field of view
   const double read_s = since(t);
   t = Clock::now();

@@ -70,7 +70,7 @@ class CarmenParser {
     }
   }
 
-  hmt::Log finish() {
+  hmt::Log finish(std::vector<Pose2D>* odometry) {
     // Logs with both carry the same scans twice; FLASER is the classic one.
     std::vector<RawScan>& scans = flaser_.empty() ? robotlaser_ : flaser_;
     if (scans.empty())
@@ -83,8 +83,10 @@ class CarmenParser {
     hmt::Log log;
     log.source = path_;
     log.steps.reserve(scans.size());
+    if (odometry) odometry->clear();
     for (size_t k = 0; k < scans.size(); ++k) {
       RawScan& s = scans[k];
+      if (odometry) odometry->push_back(s.odometry);
       LogStep step;
       step.timestamp = s.timestamp;
       if (k > 0) {
@@ -258,13 +260,15 @@ class CarmenParser {
 
 }  // namespace
 
-hmt::Log read_carmen(const std::string& path) {
+hmt::Log read_carmen(const std::string& path) { return read_carmen(path, nullptr); }
+
+hmt::Log read_carmen(const std::string& path, std::vector<Pose2D>* odometry) {
   const std::string text = detail::read_text_file(path, "CARMEN log");
   if (text.find_first_not_of(" \t\r\n") == std::string::npos)
     throw InputError("CARMEN log '" + path + "' is empty");
   CarmenParser parser(path);
   parser.parse(text);
-  return parser.finish();
+  return parser.finish(odometry);
 }
 
 }  // namespace hmt::io

@@ -1,4 +1,5 @@
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <string_view>
 
@@ -32,21 +33,45 @@ bool looks_like_carmen(std::string_view head) {
   return false;
 }
 
+// The first line of a ROS bag, any version ("#ROSBAG V2.0\n").
+constexpr std::string_view kBagMagic = "#ROSBAG V";
+
+bool starts_with(const std::string& s, std::string_view prefix) {
+  return s.compare(0, prefix.size(), prefix) == 0;
+}
+
 }  // namespace
 
 LogFormat detect_log_format(const std::string& path) {
   require_readable_file(path, "input log");
   if (std::filesystem::file_size(path) == 0)
     throw InputError("input log '" + path + "' is empty");
+  // The bag's magic line first: it starts with '#', as CARMEN comments do.
+  const std::string head = detail::read_file_head(path, 4096);
+  if (starts_with(head, kBagMagic)) {
+    std::ifstream in(path, std::ios::binary);
+    std::string raw(kBagMagic.size(), '\0');
+    in.read(raw.data(), static_cast<std::streamsize>(raw.size()));
+    if (!starts_with(raw, kBagMagic))
+      throw InputError("input log '" + path +
+                       "' is a gzip-compressed ROS bag: decompress it first (rosbag reads "
+                       "plain files only)");
+    return LogFormat::kRosBag;
+  }
   // A rawlog starts with a binary object header, so a few KB of text that
   // begin with a CARMEN message are decisive.
-  return looks_like_carmen(detail::read_file_head(path, 4096))
-             ? LogFormat::kCarmen
-             : LogFormat::kRawlog;
+  return looks_like_carmen(head) ? LogFormat::kCarmen : LogFormat::kRawlog;
 }
 
-hmt::Log read_log(const std::string& path) {
-  if (detect_log_format(path) == LogFormat::kCarmen) return read_carmen(path);
+hmt::Log read_log(const std::string& path, const BagOptions& bag) {
+  switch (detect_log_format(path)) {
+    case LogFormat::kCarmen:
+      return read_carmen(path);
+    case LogFormat::kRosBag:
+      return read_bag(path, bag);
+    case LogFormat::kRawlog:
+      break;
+  }
   return detail::read_rawlog(path, /*chosen_by_content=*/true);
 }
 

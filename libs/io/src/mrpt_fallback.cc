@@ -1,16 +1,11 @@
 #include "mrpt_fallback.h"
 
-#include <dlfcn.h>
-
 #include <atomic>
-#include <cstdlib>
-#include <filesystem>
 #include <stdexcept>
-#include <system_error>
-#include <vector>
 
 #include "hmt/common/error.h"
 #include "mrpt_plugin_abi.h"
+#include "plugin_loader.h"
 
 #ifndef HMT_IO_MRPT_PLUGIN_PATH
 #error "HMT_IO_MRPT_PLUGIN_PATH must name the plugin's build location"
@@ -21,33 +16,11 @@ namespace {
 
 std::atomic<size_t> g_fallback_reads{0};
 
-std::vector<std::string> plugin_candidates() {
-  if (const char* env = std::getenv("HMT_IO_MRPT_PLUGIN"); env && *env)
-    return {env};
-  std::vector<std::string> out;
-  std::error_code ec;
-  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) out.push_back((exe.parent_path() / kMrptPluginFileName).string());
-  out.push_back(HMT_IO_MRPT_PLUGIN_PATH);
-  return out;
-}
-
-// The plugin's reader, or nullptr with `tried` saying why not. The handle
-// is never closed: MRPT registers its classes in static tables on load.
+// The plugin's reader, or nullptr with `tried` saying why not.
 MrptReadRawlogFn load_reader(std::string& tried) {
-  for (const std::string& path : plugin_candidates()) {
-    if (!tried.empty()) tried += "; ";
-    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
-      const char* err = dlerror();
-      tried += err ? err : path + ": cannot be loaded";
-      continue;
-    }
-    if (void* fn = dlsym(handle, kMrptReadRawlogSymbol))
-      return reinterpret_cast<MrptReadRawlogFn>(fn);
-    tried += path + ": no " + kMrptReadRawlogSymbol + " (another build?)";
-  }
-  return nullptr;
+  return reinterpret_cast<MrptReadRawlogFn>(
+      load_plugin_symbol("HMT_IO_MRPT_PLUGIN", kMrptPluginFileName,
+                         HMT_IO_MRPT_PLUGIN_PATH, kMrptReadRawlogSymbol, tried));
 }
 
 }  // namespace

@@ -22,6 +22,7 @@ void InputOptions::load(Config& cfg, const std::string& config_dir) {
   max_steps = cfg.get_int("input", "max_steps", max_steps);
   require(first_step >= 0, "input", "first_step", ">= 0");
   require(max_steps >= 0, "input", "max_steps", ">= 0");
+  bag.load(cfg, "input");
   if (!log.empty() && fs::path(log).is_relative() && !config_dir.empty())
     log = (fs::path(config_dir) / log).lexically_normal().string();
 }

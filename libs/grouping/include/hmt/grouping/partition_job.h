@@ -19,6 +19,7 @@
 #include "hmt/grouping/local_maps.h"
 #include "hmt/grouping/scan_poses.h"
 #include "hmt/grouping/topology.h"
+#include "hmt/io/rosbag.h"
 
 namespace hmt::grouping {
 
@@ -88,6 +89,7 @@ double write_partition_outputs(const Log& log, const GroupedLog& g,
 
 struct PartitionRequest {
   std::string log_path;
+  io::BagOptions bag;            // which topics and frames of a ROS bag
   std::string poses_path;        // empty: odometry
   std::string out_dir;
   std::string effective_config;  // written as config_effective.ini

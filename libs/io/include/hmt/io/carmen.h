@@ -29,6 +29,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "hmt/common/sensor_data.h"
 
@@ -41,5 +42,10 @@ constexpr size_t kCarmenConstantBeamMinScans = 50;
 // for wrong field counts, non-numeric / NaN / infinite fields, negative
 // ranges, zero-beam scans; and for a missing, empty or scan-less file.
 hmt::Log read_carmen(const std::string& path);
+
+// read_carmen(), and into *odometry each step's odometry pose as the log
+// has it (absolute, in the log's odometry frame), which the steps hold only
+// as increments: what a bag written from the log carries (bag_writer.h).
+hmt::Log read_carmen(const std::string& path, std::vector<Pose2D>* odometry);
 
 }  // namespace hmt::io

@@ -12,6 +12,7 @@
 #include "hmt/global_map/global_map_options.h"
 #include "hmt/grouping/grouping_options.h"
 #include "hmt/hybrid/hybrid_options.h"
+#include "hmt/io/rosbag.h"
 #include "hmt/metric_slam/rbpf_options.h"
 
 namespace hmt::pipeline {
@@ -20,6 +21,7 @@ struct InputOptions {
   std::string log;     // path; relative paths are taken from the config file's folder
   int first_step = 0;  // steps of the log skipped before the first one used
   int max_steps = 0;   // 0 = the whole log
+  io::BagOptions bag;  // which topics and frames of a ROS bag
   void load(Config& cfg, const std::string& config_dir);
   // The steps this selects (first_step on, at most max_steps).
   Log select(Log log) const;
