@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <new>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "hmt/area/area_size.h"
@@ -137,6 +139,23 @@ int main(int argc, char** argv) {
   } catch (const hmt::Error& e) {
     std::fprintf(stderr, "hmt-slam: error: %s\n", e.what());
     return static_cast<int>(e.code());
+  } catch (const std::bad_alloc&) {
+    // Memory exhaustion is not a bug, but nothing else can be done with it
+    // either: say so plainly. Outputs are written to temporary files and
+    // renamed, so what an earlier run left in the output folder is intact.
+    std::fprintf(stderr,
+                 "hmt-slam: internal error: out of memory: the run needed more memory than this "
+                 "process may use (the machine's free memory, or a limit such as ulimit -v); "
+                 "files already in the output folder were left as they were\n");
+    return static_cast<int>(hmt::ExitCode::kInternal);
+  } catch (const std::system_error& e) {
+    // std::thread reports a thread it could not start (no memory for its
+    // stack, or a process limit) as EAGAIN: name the cause, not the errno.
+    const bool no_resources = e.code() == std::errc::resource_unavailable_try_again ||
+                              e.code() == std::errc::not_enough_memory;
+    std::fprintf(stderr, "hmt-slam: internal error: %s%s\n",
+                 no_resources ? "out of memory or of threads (ulimit -v / -u): " : "", e.what());
+    return static_cast<int>(hmt::ExitCode::kInternal);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "hmt-slam: internal error: %s\n", e.what());
     return static_cast<int>(hmt::ExitCode::kInternal);
