@@ -3,7 +3,7 @@
 that it drew without an error, and saves a screenshot of it.
 
     scripts/check_report.py OUT/report/index.html --screenshot PNG
-        [--width 1280] [--height 900] [--timeout 90]
+        [--width 1280] [--height 900] [--timeout 90] [--step N]
 
 The page is loaded twice by a fresh browser profile (Debian's chromium, run
 with --no-sandbox so it works as root): once to dump its DOM after its
@@ -15,7 +15,9 @@ scripts ran, once to take the screenshot. It passes when
   - the browser printed no console message (the page logs none: any is an
     error, a failed image or script load included);
   - the screenshot is a PNG of the window's size with more than a few
-    colours (not a blank or error page).
+    colours (not a blank or error page);
+  - with --step N, the page opened at that step (index.html#step=N) and
+    says so.
 
 Each browser run is killed after --timeout seconds. Exit codes: 0 the page
 is good, 1 it is not (every problem is printed), 2 bad command line, 3
@@ -76,8 +78,13 @@ def console_messages(stderr):
     return [line for line in stderr.splitlines() if re.search(r":CONSOLE[:(]", line)]
 
 
-def check_dom(dom):
+def check_dom(dom, step=None):
     problems = []
+    if step is not None:
+        m = re.search(r'<span id="readout"[^>]*>step (\d+) /', dom)
+        shown = int(m.group(1)) if m else None
+        if shown != step:
+            problems.append(f"the page shows step {shown}, expected {step}")
     m = re.search(r'<body[^>]*\bdata-report="([^"]*)"', dom)
     state = m.group(1) if m else None
     if state != "ready":
@@ -112,10 +119,13 @@ def check_screenshot(path, width, height):
     return []
 
 
-def check(index, screenshot, width, height, timeout):
-    """The problems found with the page (an empty list when it is good)."""
+def check(index, screenshot, width, height, timeout, step=None):
+    """The problems found with the page (an empty list when it is good),
+    opened at `step` if given."""
     chromium = find_chromium()
     url = "file://" + quote(os.path.abspath(index))
+    if step is not None:
+        url += f"#step={step}"
     problems = []
     with tempfile.TemporaryDirectory(prefix="hmt-report-browser.") as profile:
         # A virtual-time budget lets the page's loads and scripts finish
@@ -123,7 +133,7 @@ def check(index, screenshot, width, height, timeout):
         budget = "--virtual-time-budget=10000"
         dom, err = run_browser(chromium, os.path.join(profile, "dom"),
                                [budget, "--dump-dom"], url, timeout)
-        problems += check_dom(dom)
+        problems += check_dom(dom, step)
         problems += [f"console: {line}" for line in console_messages(err)]
         shot_dir = os.path.dirname(os.path.abspath(screenshot))
         os.makedirs(shot_dir, exist_ok=True)
@@ -151,13 +161,17 @@ def main(argv=None):
     parser.add_argument("--height", type=int, default=900)
     parser.add_argument("--timeout", type=float, default=90.0,
                         help="seconds each browser run may take (default 90)")
+    parser.add_argument("--step", type=int, help="open the page at this step")
     args = parser.parse_args(argv)
     if not os.path.isfile(args.index):
         parser.error(f"{args.index}: no such file (run hmt-slam run ... --report first)")
     if args.width < 100 or args.height < 100 or args.timeout <= 0:
         parser.error("--width and --height must be >= 100, --timeout > 0")
+    if args.step is not None and args.step < 0:
+        parser.error("--step must be >= 0")
     try:
-        problems = check(args.index, args.screenshot, args.width, args.height, args.timeout)
+        problems = check(args.index, args.screenshot, args.width, args.height, args.timeout,
+                         args.step)
     except Missing as e:
         print(f"{PROG}: {e}", file=sys.stderr)
         return EXIT_MISSING

@@ -5,12 +5,13 @@
 
 Maps the embedded Malaga log (config/default.ini) with --report into
 WORK_DIR/malaga, checks what the report holds (every step, the trajectory,
-the loop-closure candidates with their grids and points), then loads
-report/index.html in headless Chromium (scripts/check_report.py): no console
-message, no error on the page, the page says it drew everything, and a
-1280x900 screenshot that is not blank (WORK_DIR/screenshot.png). A copy of
-the report whose map image is gone must fail the same check, and --report
-without map.png is refused.
+the loop-closure candidates with their grids and points) and that a second
+run writes the same bytes, then loads report/index.html in headless
+Chromium (scripts/check_report.py): no console message, no error on the
+page, the page says it drew everything, and a 1280x900 screenshot that is
+not blank (WORK_DIR/screenshot.png). Opened at
+index.html#step=100 the page must show step 100; a copy of the report whose
+map image is gone must fail the check; --report without map.png is refused.
 """
 import importlib.util
 import json
@@ -47,6 +48,17 @@ def read_data(report_dir):
     if not (text.startswith(prefix) and text.endswith(suffix)):
         fail("data.js is not 'window.HMT_REPORT = {...};'")
     return json.loads(text[len(prefix):-len(suffix)])
+
+
+def tree(directory):
+    """{relative path: bytes} of every file under directory."""
+    files = {}
+    for root, _, names in os.walk(directory):
+        for name in names:
+            path = os.path.join(root, name)
+            with open(path, "rb") as f:
+                files[os.path.relpath(path, directory)] = f.read()
+    return files
 
 
 def check_data(data, out_dir, report_dir):
@@ -104,10 +116,26 @@ def main():
             fail(f"report/{name} was not written")
     check_data(read_data(report_dir), out_dir, report_dir)
 
+    # The same run gives the same report, byte for byte.
+    again = os.path.join(work_dir, "malaga_again")
+    r = run_app(binary, source_dir, ["run", "--config", "config/default.ini", "--out", again,
+                                     "--quiet", "--report"])
+    if r.returncode != 0:
+        fail(f"the second run exited with {r.returncode}: {r.stderr}")
+    first, second = tree(report_dir), tree(os.path.join(again, "report"))
+    if first != second:
+        differ = sorted(k for k in first.keys() | second.keys() if first.get(k) != second.get(k))
+        fail(f"two runs wrote different reports: {differ}")
+
     shot = os.path.join(work_dir, "screenshot.png")
     problems = checker.check(index, shot, 1280, 900, 90)
     if problems:
         fail("the report page in Chromium:\n  " + "\n  ".join(problems))
+    # Opened at a step (index.html#step=100), the page shows that step.
+    problems = checker.check(index, os.path.join(work_dir, "screenshot_step100.png"),
+                             1280, 900, 90, step=100)
+    if problems:
+        fail("the report page at step 100:\n  " + "\n  ".join(problems))
 
     # The check can fail: the same page without its map image does.
     broken = os.path.join(work_dir, "broken")

@@ -50,7 +50,9 @@
     " | hypotheses at most: " + (S.max_hypotheses_alive || "?");
 
   // ---- state and controls -----------------------------------------------
-  let cur = n - 1;
+  // The last step, or the one the address asks for: index.html#step=120.
+  const asked = /(?:^#|&)step=(\d+)/.exec(window.location.hash);
+  let cur = asked ? Math.max(0, Math.min(n - 1, Number(asked[1]) - first)) : n - 1;
   const slider = document.getElementById("slider");
   slider.max = String(n - 1);
   slider.value = String(cur);
@@ -100,10 +102,40 @@
   const mapImage = new Image();
   let mapReady = false;
   // Where map.png is drawn on the canvas: scale and offset (fit, centred).
-  const fit = (() => {
-    const s = Math.min(mapCanvas.width / M.width, mapCanvas.height / M.height);
-    return { s: s, x: (mapCanvas.width - M.width * s) / 2, y: (mapCanvas.height - M.height * s) / 2 };
-  })();
+  // Fitted whole at first; the wheel zooms about the pointer, a drag pans,
+  // a double click fits it again.
+  const fit = {};
+  function fitMap() {
+    fit.s = Math.min(mapCanvas.width / M.width, mapCanvas.height / M.height);
+    fit.x = (mapCanvas.width - M.width * fit.s) / 2;
+    fit.y = (mapCanvas.height - M.height * fit.s) / 2;
+  }
+  fitMap();
+  const canvasPoint = (e) => {
+    const r = mapCanvas.getBoundingClientRect();
+    return [((e.clientX - r.left) * mapCanvas.width) / r.width, ((e.clientY - r.top) * mapCanvas.height) / r.height];
+  };
+  mapCanvas.addEventListener("wheel", (e) => {
+    e.preventDefault();
+    const [px, py] = canvasPoint(e);
+    const z = Math.exp(-e.deltaY * 0.002);
+    fit.x = px - (px - fit.x) * z;
+    fit.y = py - (py - fit.y) * z;
+    fit.s *= z;
+    drawMap();
+  }, { passive: false });
+  let drag = null;
+  mapCanvas.addEventListener("mousedown", (e) => { drag = canvasPoint(e); });
+  window.addEventListener("mouseup", () => { drag = null; });
+  mapCanvas.addEventListener("mousemove", (e) => {
+    if (!drag) return;
+    const p = canvasPoint(e);
+    fit.x += p[0] - drag[0];
+    fit.y += p[1] - drag[1];
+    drag = p;
+    drawMap();
+  });
+  mapCanvas.addEventListener("dblclick", () => { fitMap(); drawMap(); });
   // A global-frame point to canvas pixels (image row 0 is the largest y).
   function toMap(x, y) {
     const ix = (x - M.origin[0]) / M.resolution;
@@ -112,7 +144,7 @@
   }
   document.getElementById("map-note").textContent =
     "(" + (M.width * M.resolution).toFixed(0) + " x " + (M.height * M.resolution).toFixed(0) +
-    " m; the final estimate)";
+    " m, the final estimate; wheel: zoom, drag: pan, double click: fit)";
 
   const areas = D.areas || [];
   const areaPose = {};
@@ -141,6 +173,7 @@
     const ctx = mapCtx;
     ctx.fillStyle = "#cdcdcd";
     ctx.fillRect(0, 0, mapCanvas.width, mapCanvas.height);
+    ctx.imageSmoothingEnabled = fit.s < 1;  // crisp cells when zoomed in
     if (mapReady) ctx.drawImage(mapImage, fit.x, fit.y, M.width * fit.s, M.height * fit.s);
     const now = first + cur;
     // Arcs between the areas created so far.
@@ -378,36 +411,51 @@
     return viewImages[src];
   }
 
-  // The observations (robot frame) placed at `pose` in the candidate area's
-  // grid: red where they fall, the robot in gold.
-  function drawView(canvas, grid, points, pose) {
+  // The observations (robot frame) placed at `pose`: global points.
+  function place(points, pose) {
+    const c = Math.cos(pose[2]), s = Math.sin(pose[2]);
+    return points.map((p) => [pose[0] + c * p[0] - s * p[1], pose[1] + s * p[0] + c * p[1]]);
+  }
+  // The window both pictures of a candidate share, centred between the two
+  // robot poses: as far as the nearer half of the observations reaches (4 to
+  // 15 m), so the two compare at one scale, zoomed enough to see how far
+  // apart the walls fall.
+  function viewWindow(points, poses) {
+    const d = points.map((p) => Math.hypot(p[0], p[1])).sort((a, b) => a - b);
+    const r = Math.max(4, Math.min(15, (d.length ? d[Math.floor(d.length / 2)] : 0) + 1));
+    const cx = (poses[0][0] + poses[1][0]) / 2, cy = (poses[0][1] + poses[1][1]) / 2;
+    return { x0: cx - r, y0: cy - r, x1: cx + r, y1: cy + r };
+  }
+
+  // The candidate area's grid in `win`, the placed observations in red over
+  // it, the robot in gold.
+  function drawView(canvas, grid, world, pose, win) {
     const ctx = canvas.getContext("2d");
     const img = gridImage(grid.image);
     const paint = () => {
-      // Frame the grid and the placed points together.
-      const c = Math.cos(pose[2]), s = Math.sin(pose[2]);
-      const world = points.map((p) => [pose[0] + c * p[0] - s * p[1], pose[1] + s * p[0] + c * p[1]]);
-      let x0 = grid.origin[0], y0 = grid.origin[1];
-      let x1 = x0 + grid.width * grid.resolution, y1 = y0 + grid.height * grid.resolution;
-      for (const [x, y] of world.concat([[pose[0], pose[1]]])) {
-        x0 = Math.min(x0, x - 1); x1 = Math.max(x1, x + 1);
-        y0 = Math.min(y0, y - 1); y1 = Math.max(y1, y + 1);
-      }
-      const k = Math.min(canvas.width / (x1 - x0), canvas.height / (y1 - y0));
-      const ox = (canvas.width - (x1 - x0) * k) / 2, oy = (canvas.height - (y1 - y0) * k) / 2;
-      const to = (x, y) => [ox + (x - x0) * k, oy + (y1 - y) * k];
+      const k = Math.min(canvas.width / (win.x1 - win.x0), canvas.height / (win.y1 - win.y0));
+      const ox = (canvas.width - (win.x1 - win.x0) * k) / 2;
+      const oy = (canvas.height - (win.y1 - win.y0) * k) / 2;
+      const to = (x, y) => [ox + (x - win.x0) * k, oy + (win.y1 - y) * k];
       ctx.fillStyle = "#cdcdcd";
       ctx.fillRect(0, 0, canvas.width, canvas.height);
       const g = to(grid.origin[0], grid.origin[1] + grid.height * grid.resolution);
       ctx.imageSmoothingEnabled = false;
       ctx.drawImage(img, g[0], g[1], grid.width * grid.resolution * k, grid.height * grid.resolution * k);
-      ctx.fillStyle = "rgba(220,0,0,0.85)";
+      ctx.fillStyle = "rgba(220,0,0,0.75)";
       for (const [x, y] of world) {
         const q = to(x, y);
-        ctx.fillRect(q[0] - 1.5, q[1] - 1.5, 3, 3);
+        ctx.fillRect(q[0] - 1.25, q[1] - 1.25, 2.5, 2.5);
       }
       const r = to(pose[0], pose[1]);
       drawRobot(ctx, [r[0], r[1], pose[2]], 9, "#ffd700");
+      // A scale bar: 1 m.
+      ctx.fillStyle = "#000";
+      ctx.fillRect(8, canvas.height - 10, k, 3);
+      ctx.font = "10px DejaVu Sans, sans-serif";
+      ctx.textAlign = "left";
+      ctx.textBaseline = "bottom";
+      ctx.fillText("1 m", 8, canvas.height - 12);
     };
     if (img.complete && img.naturalWidth > 0) paint();
     else img.addEventListener("load", paint);
@@ -425,10 +473,17 @@
     return [f, canvas];
   }
 
+  let shown = -1;  // the candidate event drawn below, an index into candidates
+  const views = document.getElementById("event-views");
   function selectEvent(k) {
+    shown = k;
     rows.forEach((tr, j) => tr.classList.toggle("selected", j === k));
+    // Its row into view within the list (not by scrolling the page).
+    const tr = rows[k];
+    if (tr.offsetTop < eventsDiv.scrollTop + 20 ||
+        tr.offsetTop > eventsDiv.scrollTop + eventsDiv.clientHeight - 20)
+      eventsDiv.scrollTop = tr.offsetTop - eventsDiv.clientHeight / 2;
     const ev = candidates[k];
-    const views = document.getElementById("event-views");
     views.innerHTML = "";
     const pNew = ev.outcomes.filter((o) => o.area === null).reduce((t, o) => t + o.probability, 0);
     document.getElementById("event-title").textContent =
@@ -455,20 +510,32 @@
         " deg; P(new area) = " + fmtP(pNew));
       views.appendChild(f1);
       views.appendChild(f2);
-      drawView(c1, o.grid, ev.points, o.match);
-      drawView(c2, o.grid, ev.points, o.prior);
+      const atMatch = place(ev.points, o.match), atPrior = place(ev.points, o.prior);
+      const win = viewWindow(ev.points, [o.match, o.prior]);
+      drawView(c1, o.grid, atMatch, o.match, win);
+      drawView(c2, o.grid, atPrior, o.prior, win);
     }
   }
 
-  // The event shown first: the one whose known area was most probable.
-  if (candidates.length > 0) {
-    let best = 0;
-    const pKnown = (ev) => Math.max(...ev.outcomes.filter((o) => o.area !== null).map((o) => o.probability));
-    candidates.forEach((ev, k) => { if (pKnown(ev) > pKnown(candidates[best])) best = k; });
-    selectEvent(best);
-  } else {
-    document.getElementById("event-detail").style.display = "none";
+  // The event drawn below follows the step: the last one at or before it
+  // (of those at one step, the one the reader clicked stays).
+  function followStep() {
+    const now = first + cur;
+    let k = -1;
+    candidates.forEach((ev, j) => { if (ev.step <= now) k = j; });
+    if (k >= 0 && shown >= 0 && candidates[shown].step === candidates[k].step) return;
+    if (k >= 0) {
+      selectEvent(k);
+      return;
+    }
+    shown = -1;
+    rows.forEach((tr) => tr.classList.remove("selected"));
+    views.innerHTML = "";
+    document.getElementById("event-title").textContent = "No loop-closure candidate up to step " + now;
+    document.getElementById("event-text").textContent =
+      "The first known area weighed at a new-area event is at step " + candidates[0].step + ".";
   }
+  if (candidates.length === 0) document.getElementById("event-detail").style.display = "none";
 
   // ---- one step ---------------------------------------------------------
   function render() {
@@ -481,7 +548,8 @@
     drawMap();
     withCursor(pmfCanvas, pmfBackground);
     withCursor(essCanvas, essBackground);
-    candidates.forEach((ev, k) => rows[k] && rows[k].classList.toggle("past", ev.step <= first + cur));
+    candidates.forEach((ev, k) => rows[k].classList.toggle("past", ev.step <= first + cur));
+    if (candidates.length > 0) followStep();
   }
   render();
 })();
