@@ -1,7 +1,9 @@
 #include "hmt/pipeline/report.h"
 
 #include <cmath>
+#include <filesystem>
 #include <map>
+#include <set>
 #include <nlohmann/json.hpp>
 
 #include "hmt/common/error.h"
@@ -18,20 +20,25 @@ struct ReportWriter::Data {
   // shared by every event that weighed it, and is drawn once.
   std::map<const grid::OccupancyGrid*, json> drawn;
   std::map<topology::AreaId, int> versions;  // images per area so far
+  std::set<std::string> images;               // closures/... written
 };
 
 namespace {
 
 // Values rounded before they are written: the page needs millimetres and
-// four decimals of probability, not seventeen digits (data.js stays small).
-double round_to(double v, double unit) {
+// six decimals of probability, not seventeen digits (data.js stays small).
+// Divided rather than multiplied by the unit, so the result is the double
+// nearest the decimal and prints as it (0.3, not 0.30000000000000004).
+double round_to(double v, double per_unit) {
   if (!std::isfinite(v)) return 0.0;
-  return std::round(v / unit) * unit;
+  return std::round(v * per_unit) / per_unit;
 }
-double metres(double v) { return round_to(v, 1e-3); }
-double prob(double v) { return round_to(v, 1e-6); }
+double metres(double v) { return round_to(v, 1e3); }
+double prob(double v) { return round_to(v, 1e6); }
 
-json pose_json(const Pose2D& p) { return json::array({metres(p.x), metres(p.y), round_to(p.theta, 1e-4)}); }
+json pose_json(const Pose2D& p) {
+  return json::array({metres(p.x), metres(p.y), round_to(p.theta, 1e4)});
+}
 
 json frame_json(const grid::MapFrame& f) {
   return {{"width", f.width},
@@ -70,11 +77,11 @@ void ReportWriter::add_filter(const std::vector<framework::StepTrace>& traces,
       if (prob(p) > 0) pmf.push_back(json::array({area, prob(p)}));
     const framework::HypothesisTrace* h = most_probable(t);
     steps.push_back({{"step", t.step},
-                     {"time", round_to(t.time, 1e-6)},
+                     {"time", round_to(t.time, 1e6)},
                      {"pmf", pmf},
                      {"hypothesis", h ? json(h->id) : json(nullptr)},
                      {"hypothesis_probability", h ? prob(h->probability) : 0.0},
-                     {"ess", h ? round_to(h->ess, 1e-3) : 0.0},
+                     {"ess", h ? round_to(h->ess, 1e3) : 0.0},
                      {"particles", h ? h->particles : 0},
                      {"hypotheses", t.hypotheses.size()}});
   }
@@ -86,15 +93,16 @@ void ReportWriter::add_filter(const std::vector<framework::StepTrace>& traces,
     json outcomes = json::array();
     for (size_t i = 0; i < ev.outcomes.size(); ++i) {
       const tsbi::Outcome& o = ev.outcomes[i];
+      const topology::AreaId entered =
+          i < ev.entered.size() ? ev.entered[i] : topology::kNoArea;
+      const uint32_t child = i < ev.children.size() ? ev.children[i] : hybrid::kNoChild;
       json jo = {{"area", o.is_new() ? json(nullptr) : json(o.area)},
-                 {"entered", ev.entered[i] == topology::kNoArea ? json(nullptr)
-                                                                 : json(ev.entered[i])},
-                 {"child", ev.children[i] == hybrid::kNoChild ? json(nullptr)
-                                                                : json(ev.children[i])},
-                 {"log_f", round_to(o.log_f, 1e-4)},
+                 {"entered", entered == topology::kNoArea ? json(nullptr) : json(entered)},
+                 {"child", child == hybrid::kNoChild ? json(nullptr) : json(child)},
+                 {"log_f", round_to(o.log_f, 1e4)},
                  {"probability", prob(o.probability)}};
       if (!o.is_new()) {
-        jo["match_ratio"] = round_to(o.match_ratio, 1e-4);
+        jo["match_ratio"] = round_to(o.match_ratio, 1e4);
         jo["prior"] = pose_json(o.prior.mean);
         jo["match"] = pose_json(o.robot.mean);
         const auto* grid = i < ev.candidate_maps.size() ? ev.candidate_maps[i].get() : nullptr;
@@ -105,6 +113,7 @@ void ReportWriter::add_filter(const std::vector<framework::StepTrace>& traces,
             const std::string name = "closures/area_" + std::to_string(o.area) + "_" +
                                      std::to_string(data_->versions[o.area]++) + ".png";
             grid::write_png(img, dir_ + "/" + name);
+            data_->images.insert(name);
             json view = frame_json(img.frame());
             view["image"] = name;
             it = data_->drawn.emplace(grid, view).first;
@@ -115,7 +124,7 @@ void ReportWriter::add_filter(const std::vector<framework::StepTrace>& traces,
       outcomes.push_back(jo);
     }
     json je = {{"step", ev.step},
-               {"time", round_to(ev.time, 1e-6)},
+               {"time", round_to(ev.time, 1e6)},
                {"hypothesis", ev.hypothesis},
                {"hypothesis_probability", prob(ev.parent_probability)},
                {"from_area", ev.from_area},
@@ -170,7 +179,9 @@ void ReportWriter::add_map(const grid::MapFrame& frame, const std::vector<Pose2D
   json areas = json::array();
   for (topology::AreaId id : map.area_ids()) {
     const topology::Area& a = map.area(id);
-    json ja = {{"id", id}, {"created_step", a.frame.created_step}, {"keyframes", a.keyframes.size()}};
+    json ja = {{"id", id},
+               {"created_step", a.frame.created_step},
+               {"keyframes", a.keyframes.size()}};
     auto it = poses.poses.find(id);
     ja["pose"] = it == poses.poses.end() ? json(nullptr) : pose_json(it->second.mean);
     areas.push_back(ja);
@@ -200,6 +211,14 @@ std::string ReportWriter::write(const std::string& summary_json) {
     if (summary.contains(key)) root["summary"][key] = summary[key];
   root["format"] = 1;
   make_directories(dir_);
+  // Images an earlier run into this folder drew and this one did not: gone,
+  // so the folder holds this run's report only.
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir_ + "/closures", ec)) {
+    const std::string name = "closures/" + e.path().filename().string();
+    if (e.path().extension() == ".png" && !data_->images.count(name))
+      std::filesystem::remove(e.path(), ec);
+  }
   // A script that sets a global: a page opened from file:// may run a
   // script beside it but not fetch a JSON file.
   write_text_atomically(dir_ + "/data.js", "window.HMT_REPORT = " + root.dump() + ";\n");

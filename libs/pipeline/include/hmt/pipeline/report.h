@@ -14,7 +14,8 @@
 //                                       (a script, not JSON: file:// pages
 //                                       may not fetch files)
 //   closures/area_<id>_<k>.png          each candidate area's grid as TSBI
-//                                       weighed it (k-th distinct version)
+//                                       weighed it (k-th distinct version;
+//                                       an earlier run's others are removed)
 // The map itself is ../map.png. The same run gives the same bytes; every
 // file is written atomically.
 #pragma once
