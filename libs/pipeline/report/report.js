@@ -36,7 +36,9 @@
     "#c5b0d5", "#c49c94", "#f7b6d2", "#dbdb8d", "#9edae5"];
   const areaColour = (a) => PALETTE[((a - 1) % PALETTE.length + PALETTE.length) % PALETTE.length];
   const fmt = (v, d) => (v === null || v === undefined ? "-" : Number(v).toFixed(d));
-  const fmtP = (p) => (p >= 0.001 || p === 0 ? p.toFixed(3) : p.toExponential(1));
+  // data.js rounds probabilities to 1e-6: a 0 there is below that.
+  const fmtP = (p) => (p === 0 ? "< 1e-6" : p >= 0.001 ? p.toFixed(3) : p.toExponential(1));
+  const isP = (p) => (p === 0 ? "< 1e-6" : "= " + fmtP(p));  // "P " + isP(p)
 
   // ---- the run's totals -------------------------------------------------
   const S = D.summary || {};
@@ -489,12 +491,12 @@
     document.getElementById("event-title").textContent =
       "Loop-closure candidates at step " + ev.step + " (hypothesis " + ev.hypothesis + ", leaving area " + ev.from_area + ")";
     document.getElementById("event-text").textContent =
-      "TSBI weighed 'a new area' (P = " + fmtP(pNew) + ") against each known area below. Each is drawn twice: " +
+      "TSBI weighed 'a new area' (P " + isP(pNew) + ") against each known area below. Each is drawn twice: " +
       "the new area's observations (red) over the known area's grid at TSBI's best match (the loop closure), " +
       "and at the pose the arcs predict without a closure (the new-area reading). Robot in gold.";
     for (const o of ev.outcomes) {
       if (o.area === null) continue;
-      const stats = "P = " + fmtP(o.probability) + ", log F = " + fmt(o.log_f, 2) +
+      const stats = "P " + isP(o.probability) + ", log F = " + fmt(o.log_f, 2) +
         ", match ratio " + fmt(o.match_ratio, 2) + (o.child !== null ? ", became hypothesis " + o.child : ", not followed");
       if (!o.grid || !ev.points) {
         const p = document.createElement("p");
@@ -507,7 +509,7 @@
       const [f2, c2] = figure("A new area: at the pose the arcs predict in area " + o.area,
         "the match moved it by " + d.toFixed(2) + " m and " +
         (Math.abs(Math.atan2(Math.sin(o.match[2] - o.prior[2]), Math.cos(o.match[2] - o.prior[2]))) * 180 / Math.PI).toFixed(1) +
-        " deg; P(new area) = " + fmtP(pNew));
+        " deg; P(new area) " + isP(pNew));
       views.appendChild(f1);
       views.appendChild(f2);
       const atMatch = place(ev.points, o.match), atPrior = place(ev.points, o.prior);
