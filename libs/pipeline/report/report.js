@@ -324,6 +324,10 @@
     for (const ev of D.events || [])
       if (ev.outcomes.some((o) => o.area !== null && o.probability >= 0.01))
         ctx.fillRect(Math.round(stepX(box, ev.step - first)) - 1, box.y0, 2, 5);
+    // Accepted closures: a green tick along the bottom at their acceptance.
+    ctx.fillStyle = "#0a0";
+    for (const c of D.closures || [])
+      ctx.fillRect(Math.round(stepX(box, c.accepted_step - first)) - 1, box.y1 - 6, 3, 6);
     axes(ctx, box, [["1", box.y0], ["0.5", (box.y0 + box.y1) / 2], ["0", box.y1]], "P(area)");
   });
   clickToStep(pmfCanvas);
@@ -337,7 +341,8 @@
     legend.appendChild(document.createTextNode(String(a)));
   }
   if (shownAreas.length > 30) legend.appendChild(document.createTextNode(" ... " + (shownAreas.length - 30) + " more"));
-  legend.appendChild(document.createTextNode("  (area ids; ticks on top: loop-closure candidates)"));
+  legend.appendChild(document.createTextNode(
+    "  (area ids; ticks: black on top, loop-closure candidates; green below, closures accepted)"));
 
   // ESS of the most probable hypothesis, its particles, hypotheses alive.
   const essCanvas = document.getElementById("ess");
@@ -373,6 +378,12 @@
   // ---- loop-closure candidates ------------------------------------------
   // The new-area events at which a known area was weighed.
   const candidates = (D.events || []).filter((ev) => ev.outcomes.some((o) => o.area !== null));
+  // The closures TLCA accepted, by what they were made of: the step, the
+  // area left and the known area entered (hypotheses that made the same
+  // closure at one step share it).
+  const accepted = {};
+  for (const c of D.closures || []) accepted[c.step + ":" + c.from + ":" + c.to] = c;
+  const acceptedOf = (ev, o) => accepted[ev.step + ":" + ev.from_area + ":" + o.area];
   const eventsDiv = document.getElementById("events");
   const rows = [];
   if (candidates.length === 0) {
@@ -380,7 +391,7 @@
   } else {
     const table = document.createElement("table");
     table.innerHTML = "<tr><th>step</th><th>hypothesis (P)</th><th>left area</th>" +
-      "<th>P(new area)</th><th>known candidates: P</th></tr>";
+      "<th>P(new area)</th><th>known areas: P (&#10003; accepted at)</th></tr>";
     candidates.forEach((ev, k) => {
       const tr = document.createElement("tr");
       tr.className = "event";
@@ -391,7 +402,9 @@
       tr.innerHTML = cell(String(ev.step)) + cell(ev.hypothesis + " (" + fmtP(ev.hypothesis_probability) + ")") +
         cell(String(ev.from_area)) + cell(fmtP(pNew), pNew === best) +
         "<td>" + known.map((o) => (o.probability === best ? "<b>" : "") + "area " + o.area + ": " +
-          fmtP(o.probability) + (o.probability === best ? "</b>" : "")).join(", ") + "</td>";
+          fmtP(o.probability) + (o.probability === best ? "</b>" : "") +
+          (acceptedOf(ev, o) ? ' <span class="accepted">&#10003; ' + acceptedOf(ev, o).accepted_step + "</span>" : "")
+        ).join(", ") + "</td>";
       tr.addEventListener("click", () => {
         selectEvent(k);
         setStep(ev.step - first);
@@ -496,8 +509,11 @@
       "and at the pose the arcs predict without a closure (the new-area reading). Robot in gold.";
     for (const o of ev.outcomes) {
       if (o.area === null) continue;
+      const c = acceptedOf(ev, o);
       const stats = "P " + isP(o.probability) + ", log F = " + fmt(o.log_f, 2) +
-        ", match ratio " + fmt(o.match_ratio, 2) + (o.child !== null ? ", became hypothesis " + o.child : ", not followed");
+        ", match ratio " + fmt(o.match_ratio, 2) + (o.child !== null ? ", became hypothesis " + o.child : ", not followed") +
+        (c ? "; the closure " + ev.from_area + " - " + o.area + " made here was accepted at step " + c.accepted_step +
+          " (" + (c.aligned ? "fine-aligned" : "not aligned") + ", " + (c.consistent ? "consistent" : "inconsistent") + ")" : "");
       if (!o.grid || !ev.points) {
         const p = document.createElement("p");
         p.textContent = "Area " + o.area + ": " + stats + " (no view recorded)";
