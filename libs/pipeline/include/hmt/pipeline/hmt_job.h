@@ -35,7 +35,7 @@ struct HmtJobSummary {
   size_t loop_closures = 0;
   Pose2D final_pose;  // global frame (area 1's)
   std::string map_png;
-  std::string report_html;  // with --report ([output] report): report/index.html
+  std::string report_html;  // with --report (OutputOptions::report): report/index.html
 };
 
 // With `resume_from`, continues that saved run with `log` as the log that
