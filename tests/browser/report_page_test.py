@@ -97,8 +97,17 @@ def check_data(data, out_dir, report_dir):
 
 
 def main():
+    if len(sys.argv) != 4:
+        fail("usage: report_page_test.py HMT_SLAM_BIN SOURCE_DIR WORK_DIR")
     binary, source_dir, work_dir = sys.argv[1:4]
     checker = load_checker(source_dir)
+    try:
+        run_checks(checker, binary, source_dir, work_dir)
+    except checker.Missing as e:  # chromium or PIL: what to install
+        fail(str(e))
+
+
+def run_checks(checker, binary, source_dir, work_dir):
     shutil.rmtree(work_dir, ignore_errors=True)
     os.makedirs(work_dir)
     out_dir = os.path.join(work_dir, "malaga")
