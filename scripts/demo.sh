@@ -5,5 +5,6 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh
 OUT=${OUT:-out/malaga}
-./build/apps/hmt-slam run --config config/default.ini --out "$OUT"
+./build/apps/hmt-slam run --config config/default.ini --out "$OUT" --report
 echo "map image: $(pwd)/$OUT/map.png"
+echo "report (open in a browser): $(pwd)/$OUT/report/index.html"

@@ -11,6 +11,9 @@ PACKAGES=(
   libcli11-dev nlohmann-json3-dev zlib1g-dev libpng-dev libnanoflann-dev
   librosbag-storage-dev libroscpp-core-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev
   python3 python3-matplotlib time
+  # The report page's browser test (tests/browser): headless Chromium, a font
+  # for its text, PIL to read its screenshot.
+  chromium fonts-dejavu-core python3-pil
 )
 
 missing=()

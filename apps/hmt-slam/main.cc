@@ -27,12 +27,13 @@ namespace {
 // (metric), the global-RBPF baseline.
 int run(const std::string& config_path, const std::string& input,
         const std::string& out_dir, const std::vector<std::string>& sets,
-        bool quiet, bool hybrid, const std::string& resume_map = "") {
+        bool quiet, bool hybrid, bool report, const std::string& resume_map = "") {
   hmt::Config cfg = hmt::Config::from_file(config_path);
   for (const auto& s : sets) cfg.apply_override(s);
   const std::string cfg_dir = std::filesystem::path(config_path).parent_path().string();
   hmt::pipeline::JobOptions opt = hmt::pipeline::load_job_options(cfg, cfg_dir);
   if (!input.empty()) opt.input.log = input;
+  opt.output.report = report;
   if (opt.input.log.empty())
     throw hmt::UsageError("no input log: give --input or set [input] log in " + config_path);
   std::fprintf(stderr, "hmt-slam: reading %s\n", opt.input.log.c_str());
@@ -55,6 +56,7 @@ int run(const std::string& config_path, const std::string& input,
     std::printf("final pose (global): x=%.3f y=%.3f theta=%.4f\n", sum.final_pose.x,
                 sum.final_pose.y, sum.final_pose.theta);
     if (!sum.map_png.empty()) std::printf("map image: %s\n", sum.map_png.c_str());
+    if (!sum.report_html.empty()) std::printf("report: %s\n", sum.report_html.c_str());
     std::printf("outputs in: %s\n", out_dir.c_str());
     return 0;
   }
@@ -98,6 +100,7 @@ int main(int argc, char** argv) {
   std::string config, input, out = "out";
   std::vector<std::string> sets;
   bool quiet = false;
+  bool report = false;
   auto* run_cmd = app.add_subcommand(
       "run", "HMT-SLAM on a whole log: global map, topology, trajectory, PMF");
   auto* metric_cmd = app.add_subcommand(
@@ -107,6 +110,9 @@ int main(int argc, char** argv) {
       "resume", "continue a saved HMT-SLAM run (its hmt_map.bin) with more log");
   resume_cmd->add_option("--map,-m", resume_map, "hmt_map.bin written by run or resume")
       ->required();
+  for (CLI::App* cmd : {run_cmd, resume_cmd})
+    cmd->add_flag("--report", report,
+                  "also write OUT/report/index.html: a page to step through the run");
   for (CLI::App* cmd : {run_cmd, metric_cmd, resume_cmd}) {
     cmd->add_option("--config,-c", config, "INI configuration file")->required();
     cmd->add_option("--input,-i", input, "log (.rawlog, .log, .log.gz, .bag); overrides [input] log");
@@ -132,9 +138,9 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : static_cast<int>(hmt::ExitCode::kUsage);
   }
   try {
-    if (*run_cmd) return run(config, input, out, sets, quiet, true);
-    if (*metric_cmd) return run(config, input, out, sets, quiet, false);
-    if (*resume_cmd) return run(config, input, out, sets, quiet, true, resume_map);
+    if (*run_cmd) return run(config, input, out, sets, quiet, true, report);
+    if (*metric_cmd) return run(config, input, out, sets, quiet, false, false);
+    if (*resume_cmd) return run(config, input, out, sets, quiet, true, report, resume_map);
     if (*conv_cmd) return convert(conv_in, conv_out, format, conv_sets);
   } catch (const hmt::Error& e) {
     std::fprintf(stderr, "hmt-slam: error: %s\n", e.what());

@@ -210,6 +210,12 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
   ev.parent_probability = input.probability;
   ev.from_area = c;
   ev.outcomes = outcomes;
+  if (opt_.hybrid.record_closure_views) {
+    ev.observed_points =
+        std::make_shared<const std::vector<Point2D>>(input.observations.points.hit);
+    for (const tsbi::Outcome& o : outcomes)
+      ev.candidate_maps.push_back(o.is_new() ? nullptr : input.map.area(o.area).map);
+  }
   const PoseGaussian& robot = input.robot;
 
   // The area being left is archived under this hypothesis, with the best

@@ -21,6 +21,7 @@
 #include "hmt/framework/hmt_system.h"
 #include "hmt/io/tum.h"
 #include "hmt/pipeline/hmt_outputs.h"
+#include "hmt/pipeline/report.h"
 #include "hmt/pipeline/rtl_probe.h"
 #include "hmt/topology/topology_file.h"
 
@@ -108,6 +109,8 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
                           const std::string& out_dir, bool show_progress,
                           const topology::Session* resume_from) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (opt.output.report && !opt.output.png)
+    throw UsageError("--report draws over map.png, which [output] png = false turns off");
   make_directories(out_dir);
   // The configuration first: a run that fails later still says what it used.
   write_text_atomically(out_dir + "/config_effective.ini", cfg.effective_ini());
@@ -117,7 +120,9 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   if (n == 0) throw InputError(log.source + ": the log has no scans");
   // Held by pointer: released (every particle's map) once its results are
   // out, before the global map is drawn, so the two never add up.
-  auto owned = std::make_unique<framework::HmtSystem>(opt.hmt(), opt.framework);
+  hybrid::HmtOptions hmt_options = opt.hmt();
+  hmt_options.hybrid.record_closure_views = opt.output.report;
+  auto owned = std::make_unique<framework::HmtSystem>(hmt_options, opt.framework);
   framework::HmtSystem& system = *owned;
   const uint64_t first_step = resume_from ? resume_from->steps : 0;
   if (resume_from) system.resume(*resume_from);
@@ -177,6 +182,12 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   j["loop_closures_at_end"] = nlohmann::json::array();
   for (const tlca::ClosureReport& c : at_end) j["loop_closures_at_end"].push_back(closure_json(c));
   const std::vector<hybrid::TrajectorySegment> segments = filter.final_trajectory();
+  // The report takes what it draws of the filter before the filter goes.
+  std::unique_ptr<ReportWriter> report_writer;
+  if (opt.output.report) {
+    report_writer = std::make_unique<ReportWriter>(out_dir);
+    report_writer->add_filter(system.traces(), filter.transitions(), filter.acceptances());
+  }
   HmtJobSummary sum;
   sum.loop_closures = filter.stats().loop_closures_accepted;
   owned.reset();
@@ -301,6 +312,10 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   j["global_map"] = {{"method", placed ? "keyframes" : "areas"}};
   if (placed) j["global_map"]["keyframe_graph"] = graph_json;
   write_text_atomically(out_dir + "/summary.json", j.dump(2) + "\n");
+  if (report_writer) {
+    report_writer->add_map(frame, traj, first_step, segments, map, poses);
+    sum.report_html = report_writer->write(j.dump());
+  }
   return sum;
 }
 

@@ -67,6 +67,13 @@ struct TransitionEvent {
   // kNoArea for outcomes too improbable to follow).
   std::vector<uint32_t> children;
   std::vector<topology::AreaId> entered;
+  // With HybridOptions::record_closure_views only (else empty): the
+  // observations' end points in the robot frame at the snapshot (what
+  // F(gamma) was computed on; Outcome::prior and Outcome::robot place them in
+  // a known area), and per outcome the known area's grid as TSBI saw it
+  // (null for the new area).
+  std::shared_ptr<const std::vector<Point2D>> observed_points;
+  std::vector<std::shared_ptr<const grid::OccupancyGrid>> candidate_maps;
 };
 
 // One acceptance by TLCA.

@@ -37,6 +37,11 @@ struct HybridOptions {
   double arc_std_theta = 0.02;         // [rad]
   double arc_std_xy_per_metre = 0.01;  // [m/m]
   double arc_std_theta_per_metre = 0.002;  // [rad/m]
+  // Not an INI key: set by `hmt-slam run --report`. Every TSBI event then
+  // keeps what its known-area outcomes were weighed on (TransitionEvent::
+  // observed_points, candidate_maps), for the report to draw; off, runs keep
+  // no grid alive beyond the hypotheses that hold it.
+  bool record_closure_views = false;
   void load(Config& cfg, const std::string& section = "hmt");
 };
 

@@ -14,6 +14,7 @@
 //   topological_pmf.csv           P(current area) at every step (Eq. 14)
 //   tsbi_events.csv               every transition evaluated: outcomes, F, p
 //   summary.json, config_effective.ini
+//   report/index.html ...         with --report: the HTML report (report.h)
 #pragma once
 
 #include <string>
@@ -34,6 +35,7 @@ struct HmtJobSummary {
   size_t loop_closures = 0;
   Pose2D final_pose;  // global frame (area 1's)
   std::string map_png;
+  std::string report_html;  // with --report (OutputOptions::report): report/index.html
 };
 
 // With `resume_from`, continues that saved run with `log` as the log that

@@ -31,6 +31,8 @@ struct OutputOptions {
   bool png = true;
   bool pgm = true;
   int map_margin = 10;  // cells of unknown border around the map image
+  // Not an INI key: `hmt-slam run --report` (the HTML report, report.h).
+  bool report = false;
   void load(Config& cfg);
 };
 

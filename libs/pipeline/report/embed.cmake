@@ -1,0 +1,25 @@
+# Writes OUT (a C++ source) defining report_assets::kIndexHtml, kReportJs and
+# kReportCss from the files in DIR, as raw string literals. Run at build time
+# (cmake -P) so that editing a page file rebuilds the library.
+set(delim "HMT_REPORT_ASSET")
+set(body "// Generated from libs/pipeline/report/ by embed.cmake: do not edit.\n")
+string(APPEND body "#include \"report_assets.h\"\n\nnamespace hmt::pipeline::report_assets {\n\n")
+foreach(pair "kIndexHtml=index.html" "kReportJs=report.js" "kReportCss=report.css")
+  string(REPLACE "=" ";" parts "${pair}")
+  list(GET parts 0 symbol)
+  list(GET parts 1 file)
+  file(READ "${DIR}/${file}" text)
+  string(FIND "${text}" ")${delim}\"" clash)
+  if(NOT clash EQUAL -1)
+    message(FATAL_ERROR "${DIR}/${file} contains the raw-string delimiter )${delim}\"")
+  endif()
+  string(APPEND body "extern const char ${symbol}[] = R\"${delim}(${text})${delim}\";\n\n")
+endforeach()
+string(APPEND body "}  // namespace hmt::pipeline::report_assets\n")
+# Only a changed text is written, so an unchanged page recompiles nothing.
+if(EXISTS "${OUT}")
+  file(READ "${OUT}" old)
+endif()
+if(NOT old STREQUAL body)
+  file(WRITE "${OUT}" "${body}")
+endif()
