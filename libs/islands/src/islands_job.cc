@@ -1,5 +1,6 @@
 #include "hmt/islands/islands_job.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -60,7 +61,7 @@ void write_terms_csv(const OccupancyRaster& map, const DistinctivenessMap& d,
 }  // namespace
 
 IslandsSummary run_islands_job(const std::string& map_path, const IslandsOptions& opt,
-                               const std::string& out_dir) {
+                               const std::string& out_dir, const CheckSetup* check) {
   const LoadedMap loaded = load_map(map_path);
   const OccupancyRaster raster = loaded.raster();
   make_directories(out_dir);
@@ -113,6 +114,24 @@ IslandsSummary run_islands_job(const std::string& map_path, const IslandsOptions
                       {"threshold", opt.threshold},
                       {"min_distance", opt.min_distance},
                       {"islands", islands}};
+  if (check) {
+    sum.checked = true;
+    sum.check = localization_check(raster, d, check->options, check->matcher, check->insertion);
+    write_check_csv(out_dir + "/localization_check.csv", sum.check);
+    std::vector<double> e;
+    for (const CheckSample& cs : sum.check.samples) e.push_back(cs.error_xy);
+    std::sort(e.begin(), e.end());
+    const auto q = [&](double p) {
+      return e.empty() ? 0.0 : e[std::min(e.size() - 1, static_cast<size_t>(p * e.size()))];
+    };
+    j["check"] = {{"samples", sum.check.samples.size()},
+                  {"spearman_r_error", sum.check.spearman},
+                  {"error_median", q(0.5)},
+                  {"error_p90", q(0.9)},
+                  {"offset_min", check->options.offset_min},
+                  {"offset_max", check->options.offset_max},
+                  {"angle_offset_deg", check->options.angle_offset}};
+  }
   write_text_atomically(out_dir + "/islands.json", j.dump(2) + "\n");
   return sum;
 }

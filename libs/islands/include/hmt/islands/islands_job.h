@@ -11,6 +11,10 @@
 //   islands.csv           id,x,y,R of each island
 //   islands.json          what was read, the cell counts, the time taken and
 //                         the islands
+// and with a check (localization_check.h):
+//   localization_check.csv  x,y,heading,R,error_xy,error_theta per sample,
+//                         and islands.json's "check": samples, Spearman's
+//                         rank correlation of R and the error, error quantiles
 // All written atomically.
 #pragma once
 
@@ -19,6 +23,7 @@
 
 #include "hmt/islands/island_choice.h"
 #include "hmt/islands/islands_options.h"
+#include "hmt/islands/localization_check.h"
 
 namespace hmt::islands {
 
@@ -31,9 +36,20 @@ struct IslandsSummary {
   double compute_time_s = 0.0;  // R alone
   double mean_r = 0.0;          // over the cells that have one
   std::vector<Island> islands;
+  bool checked = false;
+  CheckResult check;
 };
 
+// What the localization check needs besides its own options: the matcher
+// and the log-odds of a run's configuration.
+struct CheckSetup {
+  CheckOptions options;
+  metric_slam::MatcherOptions matcher;
+  grid::InsertionOptions insertion;
+};
+
+// `check`: null, or run the localization check too.
 IslandsSummary run_islands_job(const std::string& map_path, const IslandsOptions& options,
-                               const std::string& out_dir);
+                               const std::string& out_dir, const CheckSetup* check = nullptr);
 
 }  // namespace hmt::islands

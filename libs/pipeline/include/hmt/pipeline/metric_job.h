@@ -14,6 +14,7 @@
 #include "hmt/hybrid/hybrid_options.h"
 #include "hmt/io/rosbag.h"
 #include "hmt/islands/islands_options.h"
+#include "hmt/islands/localization_check.h"
 #include "hmt/metric_slam/rbpf_options.h"
 
 namespace hmt::pipeline {
@@ -50,6 +51,8 @@ struct JobOptions {
   global_map::GlobalMapOptions global_map;
   // `hmt-slam islands`: the distinctiveness measure and the islands.
   islands::IslandsOptions islands;
+  // `hmt-slam islands --check`: R against the scan matcher's error.
+  islands::CheckOptions islands_check;
   // The options of the HMT-SLAM estimator, gathered from the above.
   hybrid::HmtOptions hmt() const { return {rbpf, area, tsbi, tlca, hybrid}; }
 };
