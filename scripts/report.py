@@ -246,7 +246,7 @@ def find_images(out_dir):
     return maps, sorted(areas)
 
 
-ISLAND_IMAGES = ("distinctiveness.png", "islands.png")
+ISLAND_IMAGES = ("distinctiveness.png", "islands.png", "islands_check.png")
 
 
 def read_islands(out_dir):

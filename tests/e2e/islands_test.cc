@@ -2,6 +2,7 @@
 // hmt_map.bin, and on bad input (one clear error line, its exit code).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -68,6 +69,14 @@ TEST(Islands, OnAMapServerMap) {
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_EQ(slurp(dir + "/o/distinctiveness.csv"), slurp(dir + "/o2/distinctiveness.csv"));
   EXPECT_EQ(slurp(dir + "/o/islands.csv"), slurp(dir + "/o2/islands.csv"));
+  // The localization check: one line per sample, and its correlation.
+  const AppResult check = run_app("islands --check --set islands_check.samples=40 --map '" + dir +
+                                      "/map.yaml' --out '" + dir + "/o3'", dir);
+  ASSERT_EQ(check.exit_code, 0) << check.err;
+  EXPECT_NE(check.out.find("Spearman"), std::string::npos) << check.out;
+  const std::string csv = slurp(dir + "/o3/localization_check.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 41);
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir + "/o3/islands.json"))["check"]["samples"], 40);
 }
 
 TEST(Islands, OnARunsHmtMap) {
