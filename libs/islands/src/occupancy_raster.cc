@@ -4,6 +4,10 @@
 
 namespace hmt::islands {
 
+namespace {
+constexpr uint8_t kUnknownLevel = 205;
+}  // namespace
+
 OccupancyRaster::OccupancyRaster(int w, int h, double res, CellState fill)
     : width(w), height(h), resolution(res) {
   if (w < 0 || h < 0) throw std::invalid_argument("OccupancyRaster: negative size");
@@ -19,11 +23,13 @@ OccupancyRaster classify(const grid::MapImage& map, const GreyThresholds& t) {
   for (int row = 0; row < img.height(); ++row) {
     const int j = img.height() - 1 - row;  // image row 0 is the top
     for (int i = 0; i < img.width(); ++i) {
-      const double v = img.at(i, row) / 255.0;
+      const uint8_t level = img.at(i, row);
+      const double v = level / 255.0;
       const double p = t.negate ? v : 1.0 - v;
       r.at(i, j) = p > t.occupied ? CellState::kOccupied
                    : p < t.free   ? CellState::kFree
-                                  : CellState::kUnknown;
+                   : level == kUnknownLevel ? CellState::kUnknown
+                                            : CellState::kUncertain;
     }
   }
   return r;

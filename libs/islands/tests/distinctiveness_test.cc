@@ -114,6 +114,24 @@ TEST(Distinctiveness, CorridorIsLowAlongItsLength) {
   EXPECT_TRUE(std::isnan(r_at(m, d, 16.05, 2.05)));  // a wall has no R
 }
 
+// Rays pass through uncertain cells (observed, neither free nor occupied)
+// and end at unknown ones.
+TEST(Distinctiveness, RaysCrossUncertainCellsAndStopAtUnknownOnes) {
+  const IslandsOptions o = options();
+  OccupancyRaster m = crossing();
+  const CellTerms clear = cell_terms(m, 100, 100, o);
+  for (int j = 0; j < m.height; ++j)
+    for (int i = 92; i <= 93; ++i)
+      if (m.at(i, j) == CellState::kFree) m.at(i, j) = CellState::kUncertain;
+  const CellTerms through = cell_terms(m, 100, 100, o);
+  EXPECT_FLOAT_EQ(through.c_parallel + through.c_perp, clear.c_parallel + clear.c_perp);
+  for (int j = 0; j < m.height; ++j)
+    for (int i = 92; i <= 93; ++i)
+      if (m.at(i, j) == CellState::kUncertain) m.at(i, j) = CellState::kUnknown;
+  const CellTerms blocked = cell_terms(m, 100, 100, o);
+  EXPECT_LT(blocked.c_parallel + blocked.c_perp, clear.c_parallel + clear.c_perp - 0.05);
+}
+
 TEST(Distinctiveness, CornerAndCrossingAreHigh) {
   const IslandsOptions o = options();
   const OccupancyRaster l = l_map();

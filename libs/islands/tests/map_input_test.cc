@@ -29,9 +29,10 @@ class MapInput : public ::testing::Test {
     std::ofstream(p, std::ios::binary) << text;
     return p;
   }
-  // A 3 x 2 map: top row free, occupied, unknown; bottom row all free.
+  // A 3 x 2 map: top row free, occupied, unknown (205); bottom row free,
+  // free, uncertain (150: p = 0.41, observed but between the thresholds).
   void write_map() {
-    const char pixels[] = {'\xfe', '\x00', '\xcd', '\xfe', '\xfe', '\xfe'};
+    const char pixels[] = {'\xfe', '\x00', '\xcd', '\xfe', '\xfe', '\x96'};
     write("m.pgm", std::string("P5\n# c\n3 2\n255\n") + std::string(pixels, sizeof pixels));
     write("m.yaml", "image: m.pgm\nresolution: 0.5\norigin: [-1.0, 2.0, 0.0]\nnegate: 0\n"
                     "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
@@ -55,7 +56,9 @@ TEST_F(MapInput, ReadsAMapServerMapByItsYamlOrItsPgm) {
     EXPECT_EQ(r.at(0, 1), CellState::kFree);
     EXPECT_EQ(r.at(1, 1), CellState::kOccupied);
     EXPECT_EQ(r.at(2, 1), CellState::kUnknown);
-    for (int i = 0; i < 3; ++i) EXPECT_EQ(r.at(i, 0), CellState::kFree);
+    EXPECT_EQ(r.at(0, 0), CellState::kFree);
+    EXPECT_EQ(r.at(1, 0), CellState::kFree);
+    EXPECT_EQ(r.at(2, 0), CellState::kUncertain);
   }
 }
 

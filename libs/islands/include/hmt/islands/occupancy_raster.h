@@ -11,7 +11,12 @@
 
 namespace hmt::islands {
 
-enum class CellState : uint8_t { kFree = 0, kOccupied = 1, kUnknown = 2 };
+// Free: a robot can be there (R is evaluated). Occupied: a wall, where rays
+// hit. Unknown: never observed, where rays end unseen. Uncertain: observed
+// but neither free nor occupied by the map's thresholds (a wall seen too
+// few times, a cell at the edge of the laser's reach): rays pass through,
+// as the laser did when it observed them, but R is not evaluated there.
+enum class CellState : uint8_t { kFree = 0, kOccupied = 1, kUnknown = 2, kUncertain = 3 };
 
 struct OccupancyRaster {
   int width = 0;
@@ -37,7 +42,9 @@ struct OccupancyRaster {
 
 // The map_server reading of a grey map image (hmt/grid/map_export.h): p =
 // (255 - v) / 255 (or v / 255 when negated) is occupied above
-// occupied_thresh, free below free_thresh, unknown between.
+// occupied_thresh, free below free_thresh; between them, the grey level 205
+// that map_server's map_saver (and this project's writer) gives cells never
+// observed is unknown, any other uncertain.
 struct GreyThresholds {
   double occupied = 0.65;
   double free = 0.196;
