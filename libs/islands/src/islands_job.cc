@@ -63,7 +63,7 @@ void write_terms_csv(const OccupancyRaster& map, const DistinctivenessMap& d,
 IslandsSummary run_islands_job(const std::string& map_path, const IslandsOptions& opt,
                                const std::string& out_dir, const CheckSetup* check) {
   const LoadedMap loaded = load_map(map_path);
-  const OccupancyRaster raster = loaded.raster();
+  const OccupancyRaster raster = loaded.raster(opt.wall_probability);
   make_directories(out_dir);
 
   IslandsSummary sum;

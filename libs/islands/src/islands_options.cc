@@ -10,6 +10,7 @@ bool positive(double v) { return std::isfinite(v) && v > 0.0; }
 }  // namespace
 
 void IslandsOptions::load(Config& cfg, const std::string& s) {
+  wall_probability = cfg.get_double(s, "wall_probability", wall_probability);
   rays = cfg.get_int(s, "rays", rays);
   field_of_view = cfg.get_double(s, "field_of_view", field_of_view);
   headings = cfg.get_int(s, "headings", headings);
@@ -25,6 +26,8 @@ void IslandsOptions::load(Config& cfg, const std::string& s) {
   min_distance = cfg.get_double(s, "min_distance", min_distance);
   threads = cfg.get_int(s, "threads", threads);
 
+  require(std::isfinite(wall_probability) && wall_probability >= 0 && wall_probability < 1, s,
+          "wall_probability", "in [0, 1)");
   require(rays >= 4 && rays <= 100000, s, "rays", "in [4, 100000]");
   require(std::isfinite(field_of_view) && field_of_view > 0 && field_of_view <= 360, s,
           "field_of_view", "in (0, 360]");

@@ -18,6 +18,7 @@ TEST(IslandsOptions, DefaultsAreThoseOfDefaultIni) {
   Config none = Config::from_string("", "test");
   IslandsOptions code;
   code.load(none);
+  EXPECT_EQ(file.wall_probability, code.wall_probability);
   EXPECT_EQ(file.rays, code.rays);
   EXPECT_EQ(file.field_of_view, code.field_of_view);
   EXPECT_EQ(file.headings, code.headings);
@@ -60,7 +61,7 @@ TEST(IslandsOptions, InvalidValuesAreConfigurationErrors) {
        {"rays = 2", "field_of_view = 0", "field_of_view = 400", "headings = 0", "max_range = 0",
         "decay = -1", "cutoff = 0", "rate = 0", "epsilon = -0.1", "stride = 0",
         "normal_radius = 0", "reference_window = 0.5", "threshold = 1.5", "min_distance = -1",
-        "threads = -1", "rays = many"}) {
+        "threads = -1", "rays = many", "wall_probability = 1"}) {
     SCOPED_TRACE(bad);
     Config cfg = Config::from_string("[islands]\n" + bad + "\n", "test");
     IslandsOptions o;

@@ -59,6 +59,8 @@ TEST_F(MapInput, ReadsAMapServerMapByItsYamlOrItsPgm) {
     EXPECT_EQ(r.at(0, 0), CellState::kFree);
     EXPECT_EQ(r.at(1, 0), CellState::kFree);
     EXPECT_EQ(r.at(2, 0), CellState::kUncertain);
+    // With walls from p > 0.4, the uncertain cell (p = 0.41) is one.
+    EXPECT_EQ(m.raster(0.4).at(2, 0), CellState::kOccupied);
   }
 }
 

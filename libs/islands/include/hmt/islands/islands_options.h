@@ -16,6 +16,11 @@ struct IslandsOptions {
   // (degrees) around its heading, up to max_range metres. With a field of
   // view under 360, F is evaluated for `headings` evenly spread headings and
   // the best kept (the robot can turn to face the best way at an island).
+  // A map cell more likely occupied than this is a wall the rays hit,
+  // whatever the map's own occupied threshold: the walls of a laser map
+  // seen only a few times stay below map_server's 0.65, and a ray must not
+  // pass through them.
+  double wall_probability = 0.5;
   int rays = 180;
   double field_of_view = 360.0;  // [deg]
   int headings = 8;

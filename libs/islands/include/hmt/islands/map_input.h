@@ -26,6 +26,13 @@ struct LoadedMap {
   GreyThresholds thresholds;
   std::string description;  // what was read, for the user
   OccupancyRaster raster() const { return classify(image, thresholds); }
+  // The same with walls above `wall_probability` instead of the map's own
+  // occupied threshold ([islands] wall_probability).
+  OccupancyRaster raster(double wall_probability) const {
+    GreyThresholds t = thresholds;
+    t.occupied = wall_probability;
+    return classify(image, t);
+  }
 };
 
 LoadedMap load_map(const std::string& path);
