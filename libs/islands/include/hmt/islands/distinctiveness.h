@@ -3,7 +3,8 @@
 // segments:
 //
 //  - From a free cell p the sensor's rays are cast into the grid (a DDA walk,
-//    up to max_range; unknown cells end a ray unseen). Each hit contributes a
+//    up to max_range; occupied cells are hits, unknown cells end a ray
+//    unseen, uncertain ones let it through: occupancy_raster.h). Each hit contributes a
 //    vector influence (Eq. 7) along the surface normal at the hit
 //    (surface_normals.h), of length W(d) |N . view| dTheta, with W(d) =
 //    exp(-k d) (Eq. 8). The part of a hit that is not wall-like (its
