@@ -25,6 +25,11 @@ table, and the page says which input was missing):
   memory.csv           step,time,peak_rss_mb,map_memory_mb,hypotheses,areas
                                                            -> report/memory.png (Fig. 9e)
   map.png, map_topology.png, areas/area_<id>.png           shown as they are
+  islands/islands.json, islands/distinctiveness.png, islands/islands.png
+                       what `hmt-slam islands --map OUT_DIR/hmt_map.bin` writes
+                       (its default folder): the distinctiveness heat map, the
+                       islands on the map and a table of them; shown only when
+                       present (the islands are not part of a run)
 
 Writes DIR/report/<figure>.png and DIR/index.html, DIR being --html-out or
 OUT_DIR; the page links every image by a relative path. Every input is read
@@ -241,12 +246,33 @@ def find_images(out_dir):
     return maps, sorted(areas)
 
 
+ISLAND_IMAGES = ("distinctiveness.png", "islands.png", "islands_check.png")
+
+
+def read_islands(out_dir):
+    """islands/islands.json and the images beside it, or None."""
+    path = os.path.join(out_dir, "islands", "islands.json")
+    doc = read_json(path)
+    if doc is None:
+        return None
+    if not isinstance(doc, dict) or not isinstance(doc.get("islands"), list):
+        raise ReportError(EXIT_INPUT, f"{path}: expected an object with an 'islands' list")
+    for k, item in enumerate(doc["islands"]):
+        if not isinstance(item, dict) or not all(
+                isinstance(item.get(key), (int, float)) for key in ("id", "x", "y", "R")):
+            raise ReportError(EXIT_INPUT, f"{path}: island {k} lacks a numeric id, x, y or R")
+    images = [name for name in ISLAND_IMAGES
+              if os.path.isfile(os.path.join(out_dir, "islands", name))]
+    return {"doc": doc, "images": images}
+
+
 def load_inputs(out_dir):
     data = {name: read_csv(os.path.join(out_dir, name), spec)
             for name, spec in CSV_SPECS.items()}
     data["summary.json"] = read_summary(os.path.join(out_dir, "summary.json"))
     data["topology.json"] = read_topology(os.path.join(out_dir, "topology.json"))
     data["maps"], data["area_images"] = find_images(out_dir)
+    data["islands"] = read_islands(out_dir)
     return data
 
 
@@ -721,6 +747,23 @@ img.fig{max-width:100%;border:1px solid #ddd}
 .missing{color:#a33}"""
 
 
+def islands_section(islands, out_dir, html_dir):
+    doc = islands["doc"]
+    parts = ['<h2>Islands of reliability <small>from islands/islands.json</small></h2>',
+             f'<p>Distinctiveness R (Simhon &amp; Dudek, Eq. 4-12) of {esc(doc.get("map", ""))}: '
+             f'mean {esc(doc.get("mean_r"), 3)}; islands where R &ge; '
+             f'{esc(doc.get("threshold"), 3)}, at least {esc(doc.get("min_distance"), 3)} m '
+             f'apart.</p>']
+    for name in islands["images"]:
+        src = link(os.path.join(out_dir, "islands", name), html_dir)
+        parts.append(f'<h3>{html.escape(name)}</h3><a href="{src}">'
+                     f'<img class="fig" src="{src}" alt="{html.escape(name)}"></a>')
+    rows = [[esc(i["id"]), esc(i["x"], 4), esc(i["y"], 4), esc(i["R"], 3)] for i in doc["islands"]]
+    parts.append(table(["island", "x (m)", "y (m)", "R"], rows) if rows
+                 else '<p>No place reaches the threshold.</p>')
+    return "\n".join(parts)
+
+
 def build_page(data, skipped, out_dir, html_dir, report_dir):
     summary, topo = data["summary.json"], data["topology.json"]
     title = "HMT-SLAM report"
@@ -761,6 +804,9 @@ def build_page(data, skipped, out_dir, html_dir, report_dir):
                          f'{CANDIDATE_THRESHOLD:g})</h3>' + candidates_section(data[source]))
         elif source == "process_times.csv":
             parts.append('<h3>Time per process</h3>' + process_totals_section(data[source]))
+
+    if data["islands"] is not None:
+        parts.append(islands_section(data["islands"], out_dir, html_dir))
 
     area_links = {i: link(os.path.join(out_dir, p), html_dir) for i, p in data["area_images"]}
     if topo is not None:

@@ -14,8 +14,10 @@
 #include "hmt/area/area_size.h"
 #include "hmt/common/config.h"
 #include "hmt/common/error.h"
+#include "hmt/common/files.h"
 #include "hmt/io/log_reader.h"
 #include "hmt/io/rawlog.h"
+#include "hmt/islands/islands_job.h"
 #include "hmt/pipeline/hmt_job.h"
 #include "hmt/pipeline/metric_job.h"
 #include "hmt/topology/topology_file.h"
@@ -91,6 +93,37 @@ int convert(const std::string& input, const std::string& output,
   return 0;
 }
 
+// R over a map and the islands chosen from it (hmt/islands/islands_job.h).
+// The options are the configuration's [islands] keys (every key of the file
+// is checked, as for run); without --config, the defaults.
+int islands(const std::string& map, const std::string& config_path, std::string out_dir,
+            const std::vector<std::string>& sets, bool check) {
+  hmt::Config cfg = config_path.empty() ? hmt::Config() : hmt::Config::from_file(config_path);
+  for (const auto& s : sets) cfg.apply_override(s);
+  const std::string cfg_dir = std::filesystem::path(config_path).parent_path().string();
+  const hmt::pipeline::JobOptions opt = hmt::pipeline::load_job_options(cfg, cfg_dir);
+  if (out_dir.empty())
+    out_dir = (std::filesystem::path(map).parent_path() / "islands").string();
+  std::fprintf(stderr, "hmt-slam: distinctiveness of %s\n", map.c_str());
+  const hmt::islands::CheckSetup setup{opt.islands_check, opt.rbpf.matcher, opt.rbpf.insertion};
+  const auto sum = hmt::islands::run_islands_job(map, opt.islands, out_dir, check ? &setup : nullptr);
+  hmt::write_text_atomically(out_dir + "/config_effective.ini", cfg.effective_ini());
+  std::printf("%s\n", sum.map_description.c_str());
+  std::printf("R over %zu free cells (%zu evaluated) in %.2f s; mean R %.3f\n", sum.free_cells,
+              sum.evaluated_cells, sum.compute_time_s, sum.mean_r);
+  std::printf("islands (R >= %.2f, >= %.1f m apart): %zu\n", opt.islands.threshold,
+              opt.islands.min_distance, sum.islands.size());
+  for (const auto& is : sum.islands)
+    std::printf("  %d: x=%.2f y=%.2f R=%.3f\n", is.id, is.x, is.y, is.r);
+  if (sum.checked)
+    std::printf("localization check: %zu samples, Spearman rank correlation of R and the "
+                "matcher's error %.3f (localization_check.csv)\n",
+                sum.check.samples.size(), sum.check.spearman);
+  std::printf("heat map: %s/distinctiveness.png\n", out_dir.c_str());
+  std::printf("outputs in: %s\n", out_dir.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -132,6 +165,20 @@ int main(int argc, char** argv) {
   conv_cmd->add_option("--set", conv_sets,
                        "a ROS bag's [input] key: input.scan_topic=/scan ... (repeatable)");
 
+  std::string isl_map, isl_config, isl_out;
+  std::vector<std::string> isl_sets;
+  bool isl_check = false;
+  auto* isl_cmd = app.add_subcommand(
+      "islands", "the distinctiveness measure R over a map and the islands of reliability");
+  isl_cmd->add_option("--map,-m", isl_map,
+                      "a run's hmt_map.bin, or a map_server map (.yaml, or .pgm beside it)")
+      ->required();
+  isl_cmd->add_option("--config,-c", isl_config, "INI configuration file (its [islands] keys)");
+  isl_cmd->add_option("--out,-o", isl_out, "output folder [the map's folder/islands]");
+  isl_cmd->add_option("--set", isl_sets, "override a key: islands.key=value (repeatable)");
+  isl_cmd->add_flag("--check", isl_check,
+                    "also match simulated scans from offset poses: R against the error");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -142,6 +189,7 @@ int main(int argc, char** argv) {
     if (*metric_cmd) return run(config, input, out, sets, quiet, false, false);
     if (*resume_cmd) return run(config, input, out, sets, quiet, true, report, resume_map);
     if (*conv_cmd) return convert(conv_in, conv_out, format, conv_sets);
+    if (*isl_cmd) return islands(isl_map, isl_config, isl_out, isl_sets, isl_check);
   } catch (const hmt::Error& e) {
     std::fprintf(stderr, "hmt-slam: error: %s\n", e.what());
     return static_cast<int>(e.code());

@@ -177,6 +177,23 @@ class ReportTest(unittest.TestCase):
         self.assertIn("topological inference (TSBI)", page)  # process totals
         self.assertNotIn("Missing inputs", page)
 
+    def test_islands_are_shown_when_present(self):
+        self.report()
+        self.assertNotIn("Islands of reliability", read(os.path.join(self.out, "index.html")).decode())
+        write(os.path.join(self.out, "islands", "islands.json"), json.dumps(
+            {"map": "HMT map hmt_map.bin", "mean_r": 0.31, "threshold": 0.5, "min_distance": 3,
+             "islands": [{"id": 1, "x": 2.5, "y": -1.25, "R": 0.875}]}))
+        with open(os.path.join(self.out, "islands", "distinctiveness.png"), "wb") as f:
+            f.write(tiny_png())
+        self.report()
+        page = read(os.path.join(self.out, "index.html")).decode()
+        self.assertIn("Islands of reliability", page)
+        self.assertIn("0.875", page)
+        self.assertIn("islands/distinctiveness.png", links_of(os.path.join(self.out, "index.html")))
+        write(os.path.join(self.out, "islands", "islands.json"), '{"islands": [{"id": 1}]}')
+        r = self.report(code=4)
+        self.assertIn("islands.json", r.stderr)
+
     def test_html_out_links_back_to_the_maps(self):
         html_dir = os.path.join(self.tmp, "site", "run1")
         self.report("--html-out", html_dir)

@@ -54,6 +54,8 @@ JobOptions load_job_options(Config& cfg, const std::string& config_dir) {
   o.hybrid.load(cfg, "hmt");
   o.framework.load(cfg, "framework");
   o.global_map.load(cfg, "global_map");
+  o.islands.load(cfg, "islands");
+  o.islands_check.load(cfg, "islands_check");
   // The graph's keyframes are the area abstraction's.
   o.global_map.graph.keyframe_distance = o.hybrid.keyframe_distance;
   o.global_map.graph.keyframe_angle = o.hybrid.keyframe_angle;

@@ -13,6 +13,8 @@
 #include "hmt/grouping/grouping_options.h"
 #include "hmt/hybrid/hybrid_options.h"
 #include "hmt/io/rosbag.h"
+#include "hmt/islands/islands_options.h"
+#include "hmt/islands/localization_check.h"
 #include "hmt/metric_slam/rbpf_options.h"
 
 namespace hmt::pipeline {
@@ -47,6 +49,10 @@ struct JobOptions {
   hybrid::HybridOptions hybrid;
   framework::FrameworkOptions framework;
   global_map::GlobalMapOptions global_map;
+  // `hmt-slam islands`: the distinctiveness measure and the islands.
+  islands::IslandsOptions islands;
+  // `hmt-slam islands --check`: R against the scan matcher's error.
+  islands::CheckOptions islands_check;
   // The options of the HMT-SLAM estimator, gathered from the above.
   hybrid::HmtOptions hmt() const { return {rbpf, area, tsbi, tlca, hybrid}; }
 };
