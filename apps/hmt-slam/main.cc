@@ -4,7 +4,6 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,25 +13,26 @@
 #include "hmt/common/error.h"
 #include "hmt/io/log_reader.h"
 #include "hmt/io/rawlog.h"
+#include "hmt/pipeline/default_config.h"
 #include "hmt/pipeline/hmt_job.h"
 #include "hmt/pipeline/metric_job.h"
 #include "hmt/topology/topology_file.h"
+#include "hmt/version.h"
 
 namespace {
 
 // `hybrid`: the HMT-SLAM job (run, or resume when `resume_map` names a saved
 // run's hmt_map.bin); otherwise the metric RBPF over the whole log as one map
 // (metric), the global-RBPF baseline.
-int run(const std::string& config_path, const std::string& input,
+int run(const std::vector<std::string>& configs, const std::string& input,
         const std::string& out_dir, const std::vector<std::string>& sets,
         bool quiet, bool hybrid, const std::string& resume_map = "") {
-  hmt::Config cfg = hmt::Config::from_file(config_path);
-  for (const auto& s : sets) cfg.apply_override(s);
-  const std::string cfg_dir = std::filesystem::path(config_path).parent_path().string();
-  hmt::pipeline::JobOptions opt = hmt::pipeline::load_job_options(cfg, cfg_dir);
+  // The built-in defaults (config/default.ini), each --config, then --set.
+  hmt::Config cfg = hmt::pipeline::layered_config(configs, sets);
+  hmt::pipeline::JobOptions opt = hmt::pipeline::load_job_options(cfg, "");
   if (!input.empty()) opt.input.log = input;
   if (opt.input.log.empty())
-    throw hmt::UsageError("no input log: give --input or set [input] log in " + config_path);
+    throw hmt::UsageError("no input log: give --input or set [input] log");
   std::fprintf(stderr, "hmt-slam: reading %s\n", opt.input.log.c_str());
   // Read before the log: a bad map file fails at once.
   std::unique_ptr<hmt::topology::Session> session;
@@ -87,13 +87,29 @@ int convert(const std::string& input, const std::string& output,
   return 0;
 }
 
+// `config --dump`: the built-in defaults as written in config/default.ini;
+// with --config or --set, every value in force once they are layered on the
+// defaults (checked as a run checks them).
+int dump_config(const std::vector<std::string>& configs, const std::vector<std::string>& sets) {
+  if (configs.empty() && sets.empty()) {
+    std::fputs(hmt::pipeline::default_config_text().c_str(), stdout);
+    return 0;
+  }
+  hmt::Config cfg = hmt::pipeline::layered_config(configs, sets);
+  hmt::pipeline::load_job_options(cfg, "");
+  std::fputs(cfg.effective_ini().c_str(), stdout);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"HMT-SLAM: hybrid metric-topological SLAM on 2D laser logs"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", hmt::version_string("hmt-slam"));
 
-  std::string config, input, out = "out";
+  std::vector<std::string> configs;
+  std::string input, out = "out";
   std::vector<std::string> sets;
   bool quiet = false;
   auto* run_cmd = app.add_subcommand(
@@ -106,7 +122,9 @@ int main(int argc, char** argv) {
   resume_cmd->add_option("--map,-m", resume_map, "hmt_map.bin written by run or resume")
       ->required();
   for (CLI::App* cmd : {run_cmd, metric_cmd, resume_cmd}) {
-    cmd->add_option("--config,-c", config, "INI configuration file")->required();
+    cmd->add_option("--config,-c", configs,
+                    "INI file layered on the built-in defaults (config/default.ini); "
+                    "repeatable, later files win");
     cmd->add_option("--input,-i", input, "log (.rawlog, .log, .log.gz, .bag); overrides [input] log");
     cmd->add_option("--out,-o", out, "output folder")->capture_default_str();
     cmd->add_option("--set", sets, "override a key: SECTION.key=value (repeatable)");
@@ -124,16 +142,26 @@ int main(int argc, char** argv) {
   conv_cmd->add_option("--set", conv_sets,
                        "a ROS bag's [input] key: input.scan_topic=/scan ... (repeatable)");
 
+  bool dump = false;
+  auto* config_cmd = app.add_subcommand("config", "print the configuration");
+  config_cmd->add_flag("--dump", dump,
+                       "the built-in defaults (config/default.ini); with --config or --set, "
+                       "every value in force once they are layered on them")
+      ->required();
+  config_cmd->add_option("--config,-c", configs, "INI file layered on the defaults (repeatable)");
+  config_cmd->add_option("--set", sets, "override a key: SECTION.key=value (repeatable)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : static_cast<int>(hmt::ExitCode::kUsage);
   }
   try {
-    if (*run_cmd) return run(config, input, out, sets, quiet, true);
-    if (*metric_cmd) return run(config, input, out, sets, quiet, false);
-    if (*resume_cmd) return run(config, input, out, sets, quiet, true, resume_map);
+    if (*run_cmd) return run(configs, input, out, sets, quiet, true);
+    if (*metric_cmd) return run(configs, input, out, sets, quiet, false);
+    if (*resume_cmd) return run(configs, input, out, sets, quiet, true, resume_map);
     if (*conv_cmd) return convert(conv_in, conv_out, format, conv_sets);
+    if (*config_cmd) return dump_config(configs, sets);
   } catch (const hmt::Error& e) {
     std::fprintf(stderr, "hmt-slam: error: %s\n", e.what());
     return static_cast<int>(e.code());
