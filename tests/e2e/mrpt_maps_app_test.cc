@@ -55,6 +55,42 @@ Pgm read_pgm(const std::string& path) {
   return p;
 }
 
+// Checks every keyframe of OUT/keyframes.simplemap against the run's
+// trajectory (a keyframe's step is placed at the keyframe's pose) and
+// returns how many there are.
+size_t check_keyframes(const std::string& out) {
+  mrpt::maps::CSimpleMap keyframes;
+  EXPECT_TRUE(keyframes.loadFromFile(out + "/keyframes.simplemap"));
+  std::map<long long, Pose2D> traj;  // by the timestamp in microseconds
+  for (const io::StampedPose& s : io::read_tum(out + "/trajectory.tum"))
+    traj[std::llround(s.timestamp * 1e6)] = s.pose;
+  for (size_t i = 0; i < keyframes.size(); ++i) {
+    SCOPED_TRACE(i);
+    const auto [pdf, frame] = keyframes.get(i);
+    const auto pose = std::dynamic_pointer_cast<mrpt::poses::CPose3DPDFGaussian>(pdf);
+    EXPECT_TRUE(pose && frame);
+    if (!pose || !frame) continue;
+    const auto scan = frame->getObservationByClass<mrpt::obs::CObservation2DRangeScan>();
+    EXPECT_TRUE(scan);
+    if (!scan) continue;
+    EXPECT_GT(scan->getScanSize(), 100u);
+    // trajectory.tum rounds to microseconds, MRPT keeps 100 ns ticks.
+    const long long us = std::llround(mrpt::Clock::toDouble(scan->timestamp) * 1e6);
+    const auto t = traj.lower_bound(us - 1);
+    EXPECT_TRUE(t != traj.end() && t->first <= us + 1) << us;
+    if (t == traj.end()) continue;
+    EXPECT_NEAR(pose->mean.x(), t->second.x, 1e-3);
+    EXPECT_NEAR(pose->mean.y(), t->second.y, 1e-3);
+    EXPECT_NEAR(std::remainder(pose->mean.yaw() - t->second.theta, 2 * M_PI), 0.0, 1e-3);
+    // A proper covariance of x, y and yaw.
+    EXPECT_GT(pose->cov(0, 0), 0.0);
+    EXPECT_GT(pose->cov(1, 1), 0.0);
+    EXPECT_GT(pose->cov(3, 3), 0.0);
+    EXPECT_LT(pose->cov(0, 0), 1.0);
+  }
+  return keyframes.size();
+}
+
 TEST(MrptMapsApp, MalagaMapsReadBackInMrpt) {
   const std::string dir = temp_dir("mrpt_maps");
   const AppResult r = run_app(
@@ -101,37 +137,10 @@ TEST(MrptMapsApp, MalagaMapsReadBackInMrpt) {
   EXPECT_GT(unknown, 1000u);
 
   // The keyframes: those of the keyframe graph, at the trajectory's poses.
-  mrpt::maps::CSimpleMap keyframes;
-  ASSERT_TRUE(keyframes.loadFromFile(out + "/keyframes.simplemap"));
   const auto summary = nlohmann::json::parse(slurp(out + "/summary.json"));
   const size_t nodes = summary["global_map"]["keyframe_graph"]["keyframe_nodes"].get<size_t>();
   EXPECT_GT(nodes, 20u);
-  ASSERT_EQ(keyframes.size(), nodes);
-  std::map<long long, Pose2D> traj;  // by the timestamp in microseconds
-  for (const io::StampedPose& s : io::read_tum(out + "/trajectory.tum"))
-    traj[std::llround(s.timestamp * 1e6)] = s.pose;
-  for (size_t i = 0; i < keyframes.size(); ++i) {
-    SCOPED_TRACE(i);
-    const auto [pdf, frame] = keyframes.get(i);
-    const auto pose = std::dynamic_pointer_cast<mrpt::poses::CPose3DPDFGaussian>(pdf);
-    ASSERT_TRUE(pose);
-    ASSERT_TRUE(frame);
-    const auto scan = frame->getObservationByClass<mrpt::obs::CObservation2DRangeScan>();
-    ASSERT_TRUE(scan);
-    EXPECT_GT(scan->getScanSize(), 100u);
-    // trajectory.tum rounds to microseconds, MRPT keeps 100 ns ticks.
-    const long long us = std::llround(mrpt::Clock::toDouble(scan->timestamp) * 1e6);
-    const auto t = traj.lower_bound(us - 1);
-    ASSERT_TRUE(t != traj.end() && t->first <= us + 1) << us;
-    EXPECT_NEAR(pose->mean.x(), t->second.x, 1e-3);
-    EXPECT_NEAR(pose->mean.y(), t->second.y, 1e-3);
-    EXPECT_NEAR(std::remainder(pose->mean.yaw() - t->second.theta, 2 * M_PI), 0.0, 1e-3);
-    // A proper covariance of x, y and yaw.
-    EXPECT_GT(pose->cov(0, 0), 0.0);
-    EXPECT_GT(pose->cov(1, 1), 0.0);
-    EXPECT_GT(pose->cov(3, 3), 0.0);
-    EXPECT_LT(pose->cov(0, 0), 1.0);
-  }
+  EXPECT_EQ(check_keyframes(out), nodes);
 
   // Same log, config and seed: the same bytes (zlib's gzip header holds no
   // time), whatever the particle threads.
@@ -141,6 +150,27 @@ TEST(MrptMapsApp, MalagaMapsReadBackInMrpt) {
   ASSERT_EQ(again.exit_code, 0) << again.err;
   for (const char* f : {"map.gridmap.gz", "keyframes.simplemap"})
     EXPECT_EQ(slurp(out + "/" + f), slurp(dir + "/again/" + f)) << f;
+  fs::remove_all(dir);
+}
+
+// [global_map] method = areas: no keyframe graph; the keyframes are taken
+// along the area visits, every [hmt] keyframe_distance / keyframe_angle.
+TEST(MrptMapsApp, AreasMethodKeyframesFollowTheTrajectory) {
+  const std::string dir = temp_dir("mrpt_maps_areas");
+  const AppResult r = run_app("run --quiet --set output.mrpt_maps=true --set output.png=false "
+                              "--set global_map.method=areas --out '" + dir + "/out'",
+                              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(check_keyframes(dir + "/out"), 20u);
+  mrpt::maps::COccupancyGridMap2D grid;
+  {
+    mrpt::io::CFileGZInputStream in;
+    ASSERT_TRUE(in.open(dir + "/out/map.gridmap.gz"));
+    mrpt::serialization::archiveFrom(in) >> grid;
+  }
+  const Pgm pgm = read_pgm(dir + "/out/map.pgm");
+  EXPECT_EQ(static_cast<int>(grid.getSizeX()), pgm.width);
+  EXPECT_EQ(static_cast<int>(grid.getSizeY()), pgm.height);
   fs::remove_all(dir);
 }
 

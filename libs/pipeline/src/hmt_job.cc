@@ -221,7 +221,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
       global = global_map::render_keyframe_grid(graph.nodes, step_at, opt.rbpf.resolution,
                                                 opt.rbpf.insertion);
       poses = graph.areas;
-      keyframes = graph.nodes;
+      if (opt.output.mrpt_maps) keyframes = graph.nodes;
       const global_map::KeyframeGraphReport& r = graph.report;
       graph_json = {{"area_nodes", r.area_nodes},
                     {"keyframe_nodes", r.keyframe_nodes},

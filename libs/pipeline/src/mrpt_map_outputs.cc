@@ -40,8 +40,14 @@ std::vector<global_map::KeyframeNode> visit_keyframes(
     const global_map::AreaVisit& visit = visits[v];
     const auto area = poses.poses.find(visit.area);
     if (area == poses.poses.end()) continue;  // not placed in the global frame
+    // The switching step, shared with the next visit (keyframe_graph.h), is
+    // the next visit's first: the trajectory places it in the new area.
+    size_t count = visit.poses.size();
+    if (count > 0 && v + 1 < visits.size() &&
+        visits[v + 1].first_step == visit.first_step + count - 1)
+      --count;
     Pose2D last;
-    for (size_t i = 0; i < visit.poses.size(); ++i) {
+    for (size_t i = 0; i < count; ++i) {
       const Pose2D& p = visit.poses[i];
       const Pose2D moved = p - last;
       if (i > 0 && moved.norm() < opt.keyframe_distance &&

@@ -21,7 +21,9 @@ namespace hmt::pipeline {
 // The keyframes of the area visits when no keyframe graph placed them
 // ([global_map] method = areas, or its failure): along each visit, a
 // keyframe every `opt` keyframe_distance / keyframe_angle of in-area motion
-// (the first step of a visit always), placed by its area's global pose.
+// (the first step of a visit always; the step a visit shares with the next
+// is the next one's), placed by its area's global pose, as the trajectory
+// places the step.
 std::vector<global_map::KeyframeNode> visit_keyframes(
     const std::vector<global_map::AreaVisit>& visits, const global_map::GlobalPoses& poses,
     const global_map::KeyframeGraphOptions& opt);
