@@ -91,13 +91,14 @@ int convert(const std::string& input, const std::string& output,
 // with --config or --set, every value in force once they are layered on the
 // defaults (checked as a run checks them).
 int dump_config(const std::vector<std::string>& configs, const std::vector<std::string>& sets) {
-  if (configs.empty() && sets.empty()) {
-    std::fputs(hmt::pipeline::default_config_text().c_str(), stdout);
-    return 0;
+  std::string text = hmt::pipeline::default_config_text();
+  if (!configs.empty() || !sets.empty()) {
+    hmt::Config cfg = hmt::pipeline::layered_config(configs, sets);
+    hmt::pipeline::load_job_options(cfg, "");
+    text = cfg.effective_ini();
   }
-  hmt::Config cfg = hmt::pipeline::layered_config(configs, sets);
-  hmt::pipeline::load_job_options(cfg, "");
-  std::fputs(cfg.effective_ini().c_str(), stdout);
+  if (std::fputs(text.c_str(), stdout) == EOF || std::fflush(stdout) != 0)
+    throw hmt::OutputError("cannot write the configuration to standard output");
   return 0;
 }
 
