@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "hmt/common/error.h"
 #include "run_app.h"
@@ -53,6 +54,36 @@ TEST_F(ConfigDefaults, RunWithoutConfigIsTheDefaultIniRun) {
   // MRPT maps only when asked for.
   EXPECT_FALSE(fs::exists(dir_ + "/bare/map.gridmap.gz"));
   EXPECT_FALSE(fs::exists(dir_ + "/bare/keyframes.simplemap"));
+}
+
+// hmt-partition starts from the same built-in defaults.
+TEST_F(ConfigDefaults, PartitionWithoutConfigIsTheDefaultIniRun) {
+  const std::string args = "--quiet --set input.max_steps=60 --set output.pgm=false ";
+  const AppResult bare = run_binary(HMT_PARTITION_BIN, args + "--out '" + dir_ + "/bare'", dir_);
+  ASSERT_EQ(bare.exit_code, 0) << bare.err;
+  const AppResult file = run_binary(
+      HMT_PARTITION_BIN, "--config config/default.ini " + args + "--out '" + dir_ + "/file'", dir_);
+  ASSERT_EQ(file.exit_code, 0) << file.err;
+  for (const char* name : {"topology.json", "config_effective.ini"}) {
+    SCOPED_TRACE(name);
+    const std::string a = slurp(dir_ + "/bare/" + name);
+    EXPECT_FALSE(a.empty());
+    EXPECT_EQ(a, slurp(dir_ + "/file/" + name));
+  }
+  // The same groups of the same log, named from the built-in defaults'
+  // folder in one and from config/ in the other.
+  auto groups = nlohmann::json::parse(slurp(dir_ + "/bare/groups.json"));
+  auto groups_file = nlohmann::json::parse(slurp(dir_ + "/file/groups.json"));
+  EXPECT_EQ(fs::weakly_canonical(groups["input"].get<std::string>()),
+            fs::weakly_canonical(fs::path(HMT_SOURCE_DIR) / groups_file["input"].get<std::string>()));
+  groups.erase("input");
+  groups_file.erase("input");
+  EXPECT_EQ(groups, groups_file);
+  EXPECT_GE(groups["groups"].size(), 2u);
+  const AppResult version = run_binary(HMT_PARTITION_BIN, "--version", dir_);
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_EQ(version.out.rfind(std::string("hmt-partition ") + HMT_VERSION_TEXT, 0), 0u)
+      << version.out;
 }
 
 TEST_F(ConfigDefaults, FilesAndSetsLayerOnTheDefaults) {
