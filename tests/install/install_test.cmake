@@ -78,8 +78,10 @@ expect_in("${_out}" "resolution: 0.050\n" "consumer")
 expect_in("${_out}" "hmt_consumer 0.1" "consumer")
 
 # The installed programs.
-run(COMMAND "${P}/bin/hmt-slam" --version OUTPUT _out)
-expect_in("${_out}" "hmt-slam 0.1" "--version")
+foreach(_app hmt-slam hmt-partition hmt-experiments log-to-bag)
+  run(COMMAND "${P}/bin/${_app}" --version OUTPUT _out)
+  expect_in("${_out}" "${_app} 0.1" "${_app} --version")
+endforeach()
 run(COMMAND "${P}/bin/hmt-slam" config --dump OUTPUT _out)
 file(READ "${P}/share/hmt-slam/default.ini" _ini)
 if(NOT _out STREQUAL _ini)
