@@ -28,7 +28,7 @@
 #   REPETITIONS    Google Benchmark repetitions; medians are reported [3]
 #   OUT_DIR        area.md, area_online.json and area_online.png [/tmp/hmt-bench/area]
 #   WORK_DIR       hmt-partition outputs [/tmp/hmt-bench/area-work]
-#   PYTHON         a python3 with matplotlib [first of python3, /usr/bin/python3]
+#   PYTHON         a python3 with matplotlib [first of /usr/bin/python3, python3]
 #
 # Exit status: 0 when every target is met, 1 when a run fails or a target is
 # missed (the tables are printed and written anyway), 2 on a set-up error.
@@ -59,7 +59,7 @@ die() {
 [[ -r "$CONFIG" ]] || die "configuration $CONFIG not found"
 [[ -x "$AREA_BENCH" ]] || die "$AREA_BENCH not found: install Google Benchmark (libbenchmark-dev) and rebuild"
 if [[ -z "${PYTHON:-}" ]]; then
-  for p in python3 /usr/bin/python3; do
+  for p in /usr/bin/python3 python3; do
     if command -v "$p" >/dev/null 2>&1 && "$p" -c 'import matplotlib' 2>/dev/null; then
       PYTHON=$p
       break

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Online area-detection cost against window size, from hmt_area_bench.
 
 Reads the Google Benchmark JSON of BM_OnlineKeyframe/<window> (one keyframe:

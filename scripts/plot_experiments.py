@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Plots of the area-abstraction experiments (paper 000, Sec. 6) from the
 outputs of `hmt-experiments`.
 

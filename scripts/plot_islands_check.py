@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """The paper's check of the distinctiveness measure (Simhon & Dudek, 003
 section 8.1, Fig. 2-3) from the output folder of `hmt-slam islands --check`.
 

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Figures and one HTML page from an output folder of `hmt-slam run`.
 
     python3 scripts/report.py OUT_DIR [--html-out DIR]

@@ -18,6 +18,7 @@
 #include "hmt/common/progress.h"
 #include "hmt/experiments/fov_experiment.h"
 #include "hmt/experiments/info_loss.h"
+#include "hmt/version.h"
 
 namespace {
 
@@ -276,6 +277,7 @@ int field_of_view(const FovOptions& o, const std::string& world_name, double max
 int main(int argc, char** argv) {
   CLI::App app{"HMT-SLAM experiments: the area-abstraction paper's Sec. 6"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", hmt::version_string("hmt-experiments"));
 
   InfoLossOptions il;
   std::string il_out = "/tmp/hmt-experiments", information = "joint", split = "mean";

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -12,12 +11,15 @@
 #include "hmt/common/error.h"
 #include "hmt/grouping/grouping_options.h"
 #include "hmt/grouping/partition_job.h"
+#include "hmt/pipeline/default_config.h"
 #include "hmt/pipeline/metric_job.h"
+#include "hmt/version.h"
 
 namespace {
 
 struct Args {
-  std::string config, input, poses, out;
+  std::vector<std::string> configs;
+  std::string input, poses, out;
   std::vector<std::string> sets;
   std::string keyframe_distance, keyframe_angle;  // empty: from the config
   bool quiet = false;
@@ -33,16 +35,15 @@ std::string non_negative(std::string& text) {
 }
 
 int run(const Args& a) {
-  hmt::Config cfg = hmt::Config::from_file(a.config);
-  for (const auto& s : a.sets) cfg.apply_override(s);
-  // The keyframe flags are overrides like --set, so that the effective
+  // The built-in defaults (config/default.ini), each --config, then --set;
+  // the keyframe flags are overrides like --set, so that the effective
   // configuration records them.
+  std::vector<std::string> sets = a.sets;
   if (!a.keyframe_distance.empty())
-    cfg.apply_override("grouping.keyframe_distance=" + a.keyframe_distance);
-  if (!a.keyframe_angle.empty())
-    cfg.apply_override("grouping.keyframe_angle=" + a.keyframe_angle);
-  const std::string cfg_dir = std::filesystem::path(a.config).parent_path().string();
-  const hmt::pipeline::JobOptions job = hmt::pipeline::load_job_options(cfg, cfg_dir);
+    sets.push_back("grouping.keyframe_distance=" + a.keyframe_distance);
+  if (!a.keyframe_angle.empty()) sets.push_back("grouping.keyframe_angle=" + a.keyframe_angle);
+  hmt::Config cfg = hmt::pipeline::layered_config(a.configs, sets);
+  const hmt::pipeline::JobOptions job = hmt::pipeline::load_job_options(cfg, "");
   hmt::grouping::PartitionJobOptions opt;
   opt.grouping = job.grouping;
   opt.area = job.area;
@@ -57,7 +58,7 @@ int run(const Args& a) {
   req.log_path = a.input.empty() ? job.input.log : a.input;
   req.bag = job.input.bag;
   if (req.log_path.empty())
-    throw hmt::UsageError("no input log: give --input or set [input] log in " + a.config);
+    throw hmt::UsageError("no input log: give --input or set [input] log");
   req.poses_path = a.poses;
   req.out_dir = a.out;
   req.effective_config = cfg.effective_ini();
@@ -80,7 +81,10 @@ int main(int argc, char** argv) {
       "normalized cuts, with one local map per group and the topological map "
       "joining them"};
   Args a;
-  app.add_option("--config,-c", a.config, "INI configuration file")->required();
+  app.set_version_flag("--version", hmt::version_string("hmt-partition"));
+  app.add_option("--config,-c", a.configs,
+                 "INI file layered on the built-in defaults (config/default.ini); "
+                 "repeatable, later files win");
   app.add_option("--input,-i", a.input,
                  "log (.rawlog, .log, .log.gz); overrides [input] log");
   app.add_option("--poses,-p", a.poses,

@@ -4,7 +4,6 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <new>
 #include <string>
@@ -18,26 +17,27 @@
 #include "hmt/io/log_reader.h"
 #include "hmt/io/rawlog.h"
 #include "hmt/islands/islands_job.h"
+#include "hmt/pipeline/default_config.h"
 #include "hmt/pipeline/hmt_job.h"
 #include "hmt/pipeline/metric_job.h"
 #include "hmt/topology/topology_file.h"
+#include "hmt/version.h"
 
 namespace {
 
 // `hybrid`: the HMT-SLAM job (run, or resume when `resume_map` names a saved
 // run's hmt_map.bin); otherwise the metric RBPF over the whole log as one map
 // (metric), the global-RBPF baseline.
-int run(const std::string& config_path, const std::string& input,
+int run(const std::vector<std::string>& configs, const std::string& input,
         const std::string& out_dir, const std::vector<std::string>& sets,
         bool quiet, bool hybrid, bool report, const std::string& resume_map = "") {
-  hmt::Config cfg = hmt::Config::from_file(config_path);
-  for (const auto& s : sets) cfg.apply_override(s);
-  const std::string cfg_dir = std::filesystem::path(config_path).parent_path().string();
-  hmt::pipeline::JobOptions opt = hmt::pipeline::load_job_options(cfg, cfg_dir);
+  // The built-in defaults (config/default.ini), each --config, then --set.
+  hmt::Config cfg = hmt::pipeline::layered_config(configs, sets);
+  hmt::pipeline::JobOptions opt = hmt::pipeline::load_job_options(cfg, "");
   if (!input.empty()) opt.input.log = input;
   opt.output.report = report;
   if (opt.input.log.empty())
-    throw hmt::UsageError("no input log: give --input or set [input] log in " + config_path);
+    throw hmt::UsageError("no input log: give --input or set [input] log");
   std::fprintf(stderr, "hmt-slam: reading %s\n", opt.input.log.c_str());
   // Read before the log: a bad map file fails at once.
   std::unique_ptr<hmt::topology::Session> session;
@@ -94,14 +94,12 @@ int convert(const std::string& input, const std::string& output,
 }
 
 // R over a map and the islands chosen from it (hmt/islands/islands_job.h).
-// The options are the configuration's [islands] keys (every key of the file
-// is checked, as for run); without --config, the defaults.
-int islands(const std::string& map, const std::string& config_path, std::string out_dir,
+// The options are the configuration's [islands] keys, layered as for run
+// (built-in defaults, each --config, --set; every key checked).
+int islands(const std::string& map, const std::vector<std::string>& configs, std::string out_dir,
             const std::vector<std::string>& sets, bool check) {
-  hmt::Config cfg = config_path.empty() ? hmt::Config() : hmt::Config::from_file(config_path);
-  for (const auto& s : sets) cfg.apply_override(s);
-  const std::string cfg_dir = std::filesystem::path(config_path).parent_path().string();
-  const hmt::pipeline::JobOptions opt = hmt::pipeline::load_job_options(cfg, cfg_dir);
+  const hmt::Config cfg = hmt::pipeline::layered_config(configs, sets);
+  const hmt::pipeline::JobOptions opt = hmt::pipeline::load_job_options(cfg, "");
   if (out_dir.empty())
     out_dir = (std::filesystem::path(map).parent_path() / "islands").string();
   std::fprintf(stderr, "hmt-slam: distinctiveness of %s\n", map.c_str());
@@ -124,13 +122,30 @@ int islands(const std::string& map, const std::string& config_path, std::string 
   return 0;
 }
 
+// `config --dump`: the built-in defaults as written in config/default.ini;
+// with --config or --set, every value in force once they are layered on the
+// defaults (checked as a run checks them).
+int dump_config(const std::vector<std::string>& configs, const std::vector<std::string>& sets) {
+  std::string text = hmt::pipeline::default_config_text();
+  if (!configs.empty() || !sets.empty()) {
+    hmt::Config cfg = hmt::pipeline::layered_config(configs, sets);
+    hmt::pipeline::load_job_options(cfg, "");
+    text = cfg.effective_ini();
+  }
+  if (std::fputs(text.c_str(), stdout) == EOF || std::fflush(stdout) != 0)
+    throw hmt::OutputError("cannot write the configuration to standard output");
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"HMT-SLAM: hybrid metric-topological SLAM on 2D laser logs"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", hmt::version_string("hmt-slam"));
 
-  std::string config, input, out = "out";
+  std::vector<std::string> configs;
+  std::string input, out = "out";
   std::vector<std::string> sets;
   bool quiet = false;
   bool report = false;
@@ -147,7 +162,9 @@ int main(int argc, char** argv) {
     cmd->add_flag("--report", report,
                   "also write OUT/report/index.html: a page to step through the run");
   for (CLI::App* cmd : {run_cmd, metric_cmd, resume_cmd}) {
-    cmd->add_option("--config,-c", config, "INI configuration file")->required();
+    cmd->add_option("--config,-c", configs,
+                    "INI file layered on the built-in defaults (config/default.ini); "
+                    "repeatable, later files win");
     cmd->add_option("--input,-i", input, "log (.rawlog, .log, .log.gz, .bag); overrides [input] log");
     cmd->add_option("--out,-o", out, "output folder")->capture_default_str();
     cmd->add_option("--set", sets, "override a key: SECTION.key=value (repeatable)");
@@ -165,7 +182,8 @@ int main(int argc, char** argv) {
   conv_cmd->add_option("--set", conv_sets,
                        "a ROS bag's [input] key: input.scan_topic=/scan ... (repeatable)");
 
-  std::string isl_map, isl_config, isl_out;
+  std::string isl_map, isl_out;
+  std::vector<std::string> isl_configs;
   std::vector<std::string> isl_sets;
   bool isl_check = false;
   auto* isl_cmd = app.add_subcommand(
@@ -173,11 +191,20 @@ int main(int argc, char** argv) {
   isl_cmd->add_option("--map,-m", isl_map,
                       "a run's hmt_map.bin, or a map_server map (.yaml, or .pgm beside it)")
       ->required();
-  isl_cmd->add_option("--config,-c", isl_config, "INI configuration file (its [islands] keys)");
+  isl_cmd->add_option("--config,-c", isl_configs,
+                      "INI file layered on the defaults (its [islands] keys; repeatable)");
   isl_cmd->add_option("--out,-o", isl_out, "output folder [the map's folder/islands]");
   isl_cmd->add_option("--set", isl_sets, "override a key: islands.key=value (repeatable)");
   isl_cmd->add_flag("--check", isl_check,
                     "also match simulated scans from offset poses: R against the error");
+  bool dump = false;
+  auto* config_cmd = app.add_subcommand("config", "print the configuration");
+  config_cmd->add_flag("--dump", dump,
+                       "the built-in defaults (config/default.ini); with --config or --set, "
+                       "every value in force once they are layered on them")
+      ->required();
+  config_cmd->add_option("--config,-c", configs, "INI file layered on the defaults (repeatable)");
+  config_cmd->add_option("--set", sets, "override a key: SECTION.key=value (repeatable)");
 
   try {
     app.parse(argc, argv);
@@ -185,11 +212,12 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : static_cast<int>(hmt::ExitCode::kUsage);
   }
   try {
-    if (*run_cmd) return run(config, input, out, sets, quiet, true, report);
-    if (*metric_cmd) return run(config, input, out, sets, quiet, false, false);
-    if (*resume_cmd) return run(config, input, out, sets, quiet, true, report, resume_map);
+    if (*run_cmd) return run(configs, input, out, sets, quiet, true, report);
+    if (*metric_cmd) return run(configs, input, out, sets, quiet, false, false);
+    if (*resume_cmd) return run(configs, input, out, sets, quiet, true, report, resume_map);
     if (*conv_cmd) return convert(conv_in, conv_out, format, conv_sets);
-    if (*isl_cmd) return islands(isl_map, isl_config, isl_out, isl_sets, isl_check);
+    if (*config_cmd) return dump_config(configs, sets);
+    if (*isl_cmd) return islands(isl_map, isl_configs, isl_out, isl_sets, isl_check);
   } catch (const hmt::Error& e) {
     std::fprintf(stderr, "hmt-slam: error: %s\n", e.what());
     return static_cast<int>(e.code());

@@ -10,9 +10,11 @@
 #include "hmt/common/error.h"
 #include "hmt/io/bag_writer.h"
 #include "hmt/io/log_reader.h"
+#include "hmt/version.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Write a log (CARMEN, MRPT rawlog) as a ROS 1 bag"};
+  app.set_version_flag("--version", hmt::version_string("log-to-bag"));
   std::string input, output, odometry = "topic";
   hmt::io::BagWriteOptions o;
   app.add_option("--input,-i", input, "log to convert")->required();

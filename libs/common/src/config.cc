@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -37,7 +38,8 @@ std::string lower(std::string s) {
 
 }  // namespace
 
-Config Config::from_string(const std::string& text, const std::string& origin) {
+Config Config::from_string(const std::string& text, const std::string& origin,
+                           const std::string& dir) {
   Config cfg;
   cfg.origin_ = origin;
   std::istringstream in(text);
@@ -77,7 +79,7 @@ Config Config::from_string(const std::string& text, const std::string& origin) {
     if (sec.count(key))
       throw ConfigError(where + ": duplicate key [" + section + "] " + key +
                         " (first at " + sec[key].where + ")");
-    sec[key] = Entry{value, where, false};
+    sec[key] = Entry{value, where, false, dir};
   }
   return cfg;
 }
@@ -88,10 +90,10 @@ Config Config::from_file(const std::string& path) {
   std::stringstream ss;
   ss << f.rdbuf();
   if (f.bad()) throw ConfigError("cannot read config file '" + path + "'");
-  return from_string(ss.str(), path);
+  return from_string(ss.str(), path, std::filesystem::path(path).parent_path().string());
 }
 
-void Config::apply_override(const std::string& assignment) {
+void Config::apply_override(const std::string& assignment, const std::string& dir) {
   const auto eq = assignment.find('=');
   const auto dot = assignment.find('.');
   if (eq == std::string::npos || dot == std::string::npos || dot > eq)
@@ -102,7 +104,20 @@ void Config::apply_override(const std::string& assignment) {
   const std::string value = trim(assignment.substr(eq + 1));
   if (!valid_name(section) || !valid_name(key))
     throw ConfigError("--set '" + assignment + "': malformed section or key");
-  entries_[section][key] = Entry{value, "--set " + assignment, false};
+  entries_[section][key] = Entry{value, "--set " + assignment, false, dir};
+}
+
+void Config::overlay(const Config& upper) {
+  for (const auto& [section, keys] : upper.entries_)
+    for (const auto& [key, e] : keys) entries_[section][key] = e;
+  origin_ = upper.origin_;
+}
+
+std::string Config::dir_of(const std::string& section, const std::string& key) const {
+  auto s = entries_.find(section);
+  if (s == entries_.end()) return "";
+  auto k = s->second.find(key);
+  return k == s->second.end() ? "" : k->second.dir;
 }
 
 const Config::Entry* Config::lookup(const std::string& section,
@@ -118,6 +133,13 @@ const Config::Entry* Config::lookup(const std::string& section,
 bool Config::has(const std::string& section, const std::string& key) const {
   auto s = entries_.find(section);
   return s != entries_.end() && s->second.count(key) > 0;
+}
+
+std::map<std::string, std::map<std::string, std::string>> Config::values() const {
+  std::map<std::string, std::map<std::string, std::string>> out;
+  for (const auto& [section, keys] : entries_)
+    for (const auto& [key, e] : keys) out[section][key] = e.value;
+  return out;
 }
 
 void Config::record(const std::string& section, const std::string& key,

@@ -6,6 +6,7 @@
 // The plugin is looked for, in order:
 //  - at $HMT_IO_MRPT_PLUGIN when that is set (then nowhere else);
 //  - next to the running executable (libhmt_io_mrpt.so);
+//  - in the install tree (<exe dir>/../lib/hmt-slam/libhmt_io_mrpt.so);
 //  - where the build put it (a path compiled in by CMake).
 #pragma once
 

@@ -7,6 +7,10 @@
 #include <system_error>
 #include <vector>
 
+#ifndef HMT_PLUGIN_RELATIVE_DIR
+#error "HMT_PLUGIN_RELATIVE_DIR must name the installed plugins' folder relative to bin/"
+#endif
+
 namespace hmt::io::detail {
 namespace {
 
@@ -16,7 +20,11 @@ std::vector<std::string> candidates(const char* env_var, const char* file_name,
   std::vector<std::string> out;
   std::error_code ec;
   const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) out.push_back((exe.parent_path() / file_name).string());
+  if (!ec) {
+    out.push_back((exe.parent_path() / file_name).string());
+    out.push_back(
+        (exe.parent_path() / HMT_PLUGIN_RELATIVE_DIR / file_name).lexically_normal().string());
+  }
   out.push_back(build_path);
   return out;
 }

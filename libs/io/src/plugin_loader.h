@@ -3,6 +3,9 @@
 // A plugin is looked for, in order:
 //  - at $<env_var> when that is set (then nowhere else);
 //  - next to the running executable (<file_name>);
+//  - in the install tree, <exe dir>/../lib/hmt-slam/<file_name> (the folder
+//    `cmake --install` puts plugins in, relative to the programs' bin/, so
+//    an installed prefix can be moved: HMT_PLUGIN_RELATIVE_DIR);
 //  - where the build put it (`build_path`, compiled in by CMake).
 #pragma once
 

@@ -24,6 +24,7 @@
 #include "hmt/pipeline/report.h"
 #include "hmt/pipeline/rtl_probe.h"
 #include "hmt/topology/topology_file.h"
+#include "mrpt_map_outputs.h"
 
 namespace hmt::pipeline {
 namespace {
@@ -215,6 +216,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   };
 
   std::vector<Pose2D> traj;
+  std::vector<global_map::KeyframeNode> keyframes;  // what the map was drawn from
   grid::OccupancyGrid global(opt.rbpf.resolution);
   nlohmann::json graph_json;
   bool placed = false;
@@ -230,6 +232,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
       global = global_map::render_keyframe_grid(graph.nodes, step_at, opt.rbpf.resolution,
                                                 opt.rbpf.insertion);
       poses = graph.areas;
+      if (opt.output.mrpt_maps) keyframes = graph.nodes;
       const global_map::KeyframeGraphReport& r = graph.report;
       graph_json = {{"area_nodes", r.area_nodes},
                     {"keyframe_nodes", r.keyframe_nodes},
@@ -255,6 +258,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   if (!placed) {
     traj = global_trajectory(segments, poses, first_step, n);
     global = global_map::render_global_grid(map, poses, opt.rbpf.resolution);
+    if (opt.output.mrpt_maps) keyframes = visit_keyframes(visits, poses, opt.global_map.graph);
   }
   std::vector<io::StampedPose> stamped;
   for (size_t i = 0; i < n; ++i) stamped.push_back({log.steps[i].timestamp, traj[i]});
@@ -284,6 +288,9 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
     grid::MapRows grey(global, frame);
     grid::write_pgm_yaml(grey, frame, out_dir + "/map");
   }
+  if (opt.output.mrpt_maps)
+    write_mrpt_map_outputs(global, frame, keyframes, poses, opt.global_map.graph, step_at,
+                           out_dir);
   write_topology_json(out_dir + "/topology.json", map, poses);
   write_topology_dot(out_dir + "/topology.dot", map);
 

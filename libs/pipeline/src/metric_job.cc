@@ -23,8 +23,12 @@ void InputOptions::load(Config& cfg, const std::string& config_dir) {
   require(first_step >= 0, "input", "first_step", ">= 0");
   require(max_steps >= 0, "input", "max_steps", ">= 0");
   bag.load(cfg, "input");
-  if (!log.empty() && fs::path(log).is_relative() && !config_dir.empty())
-    log = (fs::path(config_dir) / log).lexically_normal().string();
+  // Relative to the folder of the layer that set it (a --config file's, the
+  // built-in defaults' config/), else to `config_dir`.
+  const std::string own_dir = cfg.dir_of("input", "log");
+  const std::string& dir = own_dir.empty() ? config_dir : own_dir;
+  if (!log.empty() && fs::path(log).is_relative() && !dir.empty())
+    log = (fs::path(dir) / log).lexically_normal().string();
 }
 
 Log InputOptions::select(Log log) const {
@@ -39,6 +43,7 @@ void OutputOptions::load(Config& cfg) {
   png = cfg.get_bool("output", "png", png);
   pgm = cfg.get_bool("output", "pgm", pgm);
   map_margin = cfg.get_int("output", "map_margin", map_margin);
+  mrpt_maps = cfg.get_bool("output", "mrpt_maps", mrpt_maps);
   require(map_margin >= 0 && map_margin <= 1000, "output", "map_margin", "in [0, 1000]");
 }
 

@@ -6,6 +6,12 @@
 // key no component read into an error naming the key and the file, so a typo
 // never falls back silently to a default. effective_ini() dumps every value in
 // force, defaults included, for the output folder.
+//
+// Configurations layer: overlay() puts one on top of another (the built-in
+// defaults, then each --config file, then --set), a key of the upper one
+// replacing the lower one's. Each entry remembers where it came from, so
+// errors name the layer that gave the key, and the folder its relative paths
+// are taken from (the file's).
 #pragma once
 
 #include <map>
@@ -19,12 +25,25 @@ class Config {
   Config() = default;
 
   // Parses INI text: "[section]" headers, "key = value" lines, comments
-  // starting with ';' or '#'. `origin` names the text in error messages.
-  static Config from_string(const std::string& text, const std::string& origin);
+  // starting with ';' or '#'. `origin` names the text in error messages;
+  // `dir` is the folder relative paths in it are taken from (empty: none).
+  static Config from_string(const std::string& text, const std::string& origin,
+                            const std::string& dir = "");
+  // The file's folder is its entries' `dir`.
   static Config from_file(const std::string& path);
 
-  // "SECTION.key=value", as given on the command line with --set.
-  void apply_override(const std::string& assignment);
+  // "SECTION.key=value", as given on the command line with --set; a relative
+  // path in it is taken from `dir`.
+  void apply_override(const std::string& assignment, const std::string& dir = "");
+
+  // Every entry of `upper` replaces this one's with the same section and key
+  // (keys only `upper` has are added; nothing is read yet). origin() becomes
+  // upper's.
+  void overlay(const Config& upper);
+
+  // The folder relative paths of [section] key are taken from (its layer's),
+  // or "" when the key is absent or its layer has none.
+  std::string dir_of(const std::string& section, const std::string& key) const;
 
   double get_double(const std::string& section, const std::string& key,
                     double default_value);
@@ -36,6 +55,9 @@ class Config {
                          const std::string& default_value);
 
   bool has(const std::string& section, const std::string& key) const;
+
+  // Every entry's value as given (not read or checked), by section and key.
+  std::map<std::string, std::map<std::string, std::string>> values() const;
 
   // Throws ConfigError naming the first key present but never read.
   void check_all_used() const;
@@ -50,6 +72,7 @@ class Config {
     std::string value;
     std::string where;  // "file:line" or "--set"
     bool used = false;
+    std::string dir;    // folder of relative paths (the file's)
   };
   // Returns the raw entry or nullptr, marking it used.
   const Entry* lookup(const std::string& section, const std::string& key);

@@ -35,6 +35,9 @@ struct OutputOptions {
   int map_margin = 10;  // cells of unknown border around the map image
   // Not an INI key: `hmt-slam run --report` (the HTML report, report.h).
   bool report = false;
+  // map.gridmap.gz and keyframes.simplemap for MRPT's tools (hmt run only;
+  // src/mrpt_map_outputs.h)
+  bool mrpt_maps = false;
   void load(Config& cfg);
 };
 
@@ -58,7 +61,8 @@ struct JobOptions {
 };
 
 // Reads every option of every component from `cfg`, then fails on any key
-// no component read. `config_dir` resolves relative input paths.
+// no component read. A relative input path is taken from the folder of the
+// layer that set it (Config::dir_of), or else from `config_dir`.
 JobOptions load_job_options(Config& cfg, const std::string& config_dir);
 
 struct JobSummary {
