@@ -98,7 +98,7 @@ int convert(const std::string& input, const std::string& output,
 // (built-in defaults, each --config, --set; every key checked).
 int islands(const std::string& map, const std::vector<std::string>& configs, std::string out_dir,
             const std::vector<std::string>& sets, bool check) {
-  const hmt::Config cfg = hmt::pipeline::layered_config(configs, sets);
+  hmt::Config cfg = hmt::pipeline::layered_config(configs, sets);
   const hmt::pipeline::JobOptions opt = hmt::pipeline::load_job_options(cfg, "");
   if (out_dir.empty())
     out_dir = (std::filesystem::path(map).parent_path() / "islands").string();
