@@ -2,9 +2,12 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <queue>
+
+#include "hmt/common/error.h"
 
 namespace hmt::tsbi {
 
@@ -89,10 +92,13 @@ bool near_any(const SearchLattice& l, const ModeQuery& q, const std::vector<Sear
 }
 
 // A block of 2^level x 2^level translations from (i, j) at heading t, with
-// the lower bound of its poses' costs (level 0: one pose, its cost).
+// the lower bound of its poses' costs (level 0: one pose, its cost). Packed
+// in 16 bytes: a wide window's search holds up to millions of them.
 struct Block {
-  int64_t cost;
-  int level, t, j, i;
+  int32_t cost;
+  int32_t j, i;
+  int16_t t;
+  int8_t level;
 };
 
 // The order blocks are expanded in: cost first; at equal cost a block
@@ -115,6 +121,8 @@ std::vector<SearchMode> bnb_modes(const CostStack& stack, const SearchLattice& l
                                   SearchStats* stats) {
   std::vector<SearchMode> modes;
   if (pts.empty() || query.count <= 0) return modes;
+  if (pts.size() > 100000 || l.nt > 32767)
+    throw Error(ExitCode::kInternal, "bnb_modes: more points or headings than a block holds");
   const size_t n = pts.size();
   const int s = l.step_cells;
   const int nth = 2 * l.nt + 1;
@@ -123,17 +131,45 @@ std::vector<SearchMode> bnb_modes(const CostStack& stack, const SearchLattice& l
     const size_t o = static_cast<size_t>(t + l.nt) * n;
     l.cells(pts, t, cx.data() + o, cy.data() + o);
   }
+  // The points' cells' bounding box at each heading: a block that puts
+  // every point outside the stack's raster costs the maximum for each, with
+  // no lookup (the window is often much larger than the area's map).
+  std::vector<std::array<int, 4>> box(static_cast<size_t>(nth));
+  for (size_t a = 0; a < box.size(); ++a) {
+    const size_t o = a * n;
+    box[a] = {cx[o], cy[o], cx[o], cy[o]};
+    for (size_t k = o; k < o + n; ++k) {
+      box[a][0] = std::min(box[a][0], cx[k]);
+      box[a][1] = std::min(box[a][1], cy[k]);
+      box[a][2] = std::max(box[a][2], cx[k]);
+      box[a][3] = std::max(box[a][3], cy[k]);
+    }
+  }
+  std::vector<std::array<int, 4>> raster(static_cast<size_t>(stack.levels()));
+  std::vector<char> has_raster(raster.size());
+  for (int k = 0; k < stack.levels(); ++k)
+    has_raster[static_cast<size_t>(k)] = stack.raster(k, &raster[static_cast<size_t>(k)][0],
+                                                      &raster[static_cast<size_t>(k)][1],
+                                                      &raster[static_cast<size_t>(k)][2],
+                                                      &raster[static_cast<size_t>(k)][3]);
+  const int64_t all_far = static_cast<int64_t>(n) * stack.max_cost();
   SearchStats local;
   SearchStats& st = stats ? *stats : local;
-  // The bound of a block; stops at max_cost (costs are never negative).
+  int64_t limit = query.max_cost;  // tightened once the best mode is out
+  // The bound of a block; stops at the limit (costs are never negative).
   auto bound = [&](int level, int t, int i, int j) {
+    const std::array<int, 4>& b = box[static_cast<size_t>(t + l.nt)];
+    const std::array<int, 4>& r = raster[static_cast<size_t>(level)];
+    const int dx = i * s, dy = j * s;
+    if (!has_raster[static_cast<size_t>(level)] || b[2] + dx < r[0] || b[0] + dx > r[2] ||
+        b[3] + dy < r[1] || b[1] + dy > r[3])
+      return all_far;
     ++st.blocks;
     const size_t o = static_cast<size_t>(t + l.nt) * n;
-    const int dx = i * s, dy = j * s;
     int64_t sum = 0;
     for (size_t k = 0; k < n; ++k) {
       sum += stack.cost(level, cx[o + k] + dx, cy[o + k] + dy);
-      if (sum > query.max_cost) break;
+      if (sum > limit) break;
     }
     return sum;
   };
@@ -144,8 +180,9 @@ std::vector<SearchMode> bnb_modes(const CostStack& stack, const SearchLattice& l
     if (!l.block_meets_gate(i, last(i, level, l.nx), j, last(j, level, l.ny), t)) return;
     if (level == 0 && !l.in_gate(i, j, t)) return;
     const int64_t c = bound(level, t, i, j);
-    if (c > query.max_cost) return;
-    heap.push_back({c, level, t, j, i});
+    if (c > limit) return;
+    heap.push_back({static_cast<int32_t>(c), j, i, static_cast<int16_t>(t),
+                    static_cast<int8_t>(level)});
     std::push_heap(heap.begin(), heap.end(), cmp);
   };
   // Roots: blocks as large as the stack allows, or as the window needs.
@@ -158,10 +195,13 @@ std::vector<SearchMode> bnb_modes(const CostStack& stack, const SearchLattice& l
     std::pop_heap(heap.begin(), heap.end(), cmp);
     const Block b = heap.back();
     heap.pop_back();
+    if (b.cost > limit) break;  // so is everything left
     if (b.level == 0) {
       ++st.poses;
-      if (!near_any(l, query, modes, b.i, b.j, b.t))
+      if (!near_any(l, query, modes, b.i, b.j, b.t)) {
         modes.push_back({b.cost, b.i, b.j, b.t, l.pose(b.i, b.j, b.t)});
+        if (modes.size() == 1 && query.margin < limit - b.cost) limit = b.cost + query.margin;
+      }
       continue;
     }
     // A block wholly near one mode holds no other mode.
@@ -203,6 +243,7 @@ std::vector<SearchMode> exhaustive_modes(const MatchField& field, int window,
   std::vector<SearchMode> modes;
   for (const SearchMode& m : all) {
     if (static_cast<int>(modes.size()) >= query.count) break;
+    if (!modes.empty() && m.cost - modes[0].cost > query.margin) break;
     if (!near_any(l, query, modes, m.i, m.j, m.t)) modes.push_back(m);
   }
   return modes;

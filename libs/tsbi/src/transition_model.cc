@@ -164,15 +164,16 @@ std::vector<Pose2D> TransitionModel::bnb_search(const CostStack& stack, const Ma
   q.count = opt_.search_modes;
   q.separation_xy = opt_.bnb_separation_xy;
   q.separation_theta = opt_.bnb_separation_theta;
-  // No start is wanted where no mode can pass the ratio gate. A pose that
-  // passes has min_match_ratio of its points within `window` cells of an
-  // obstacle; at the lattice pose nearest to it those points moved by
-  // about a cell, so they cost at most the cost at window + 1 cells, the
-  // others at most the saturated cost. (The search's points are a subset
-  // and the steps not infinitely fine: a limit on the search's effort, not
-  // a proof.)
+  q.margin = static_cast<int64_t>(
+      std::floor(opt_.bnb_margin * static_cast<double>(pts.size()) * stack.max_cost()));
+  // No start is wanted where no mode can pass the ratio gate: a lattice
+  // pose is a start only if its cost is at most that of min_match_ratio of
+  // the points `window` cells from an obstacle (matched, as the ratio gate
+  // counts them) and the rest saturated. (A limit on the search's effort
+  // in the ratio gate's terms, not a proof: the refined mode lies up to
+  // half a lattice step away, and the search's points are a subset.)
   const double rho = opt_.min_match_ratio;
-  const int near_cost = CostStack::point_cost(matcher_.options().window + 1,
+  const int near_cost = CostStack::point_cost(matcher_.options().window,
                                               matcher_.options().coarse_window);
   q.max_cost = static_cast<int64_t>(std::floor(
       static_cast<double>(pts.size()) * (rho * near_cost + (1.0 - rho) * stack.max_cost())));

@@ -15,7 +15,7 @@
 // The modes: the lattice poses in ascending cost (ties in lattice order:
 // t, then j, then i ascending), each kept unless it lies near one kept
 // before (closer than the separation in x, y and heading), at most `count`,
-// and none costlier than `max_cost`. exhaustive_modes() computes exactly
+// none costlier than `max_cost` nor than the best mode's cost + `margin`. exhaustive_modes() computes exactly
 // that by scoring every pose; bnb_modes() gets the same answer from a
 // best-first branch and bound over blocks of 2^k x 2^k translations at one
 // heading, each bounded below by the cost stack's level k (never above the
@@ -24,7 +24,10 @@
 // exhaustive order and the search stops at the count-th mode. Blocks that
 // miss the gate ellipsoid (its exact minimum over the block at that
 // heading), that lie wholly near the modes found, or whose bound exceeds
-// max_cost are never expanded.
+// the cost limit are never expanded; once the best mode is out, the limit
+// tightens to its cost + margin (the other modes are what makes most of the
+// work: the bound must rule out every block that could hold a maximum
+// cheaper than the last one kept).
 #pragma once
 
 #include <Eigen/Core>
@@ -78,6 +81,8 @@ struct ModeQuery {
   double separation_xy = 0.3;
   double separation_theta = 0.1;
   int64_t max_cost = INT64_MAX;
+  // ... nor costlier than the best mode by more than this.
+  int64_t margin = INT64_MAX;
 };
 
 // What a branch and bound did (for tests and the cost report).
@@ -86,6 +91,7 @@ struct SearchStats {
   int64_t poses = 0;   // poses popped in cost order
 };
 
+// At most 100000 points and 32767 headings each side of the mean.
 std::vector<SearchMode> bnb_modes(const CostStack& stack, const SearchLattice& lattice,
                                   const std::vector<Point2D>& pts, const ModeQuery& query,
                                   SearchStats* stats = nullptr);

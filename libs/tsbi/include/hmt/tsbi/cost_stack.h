@@ -46,6 +46,16 @@ class CostStack {
     return max_cost_;
   }
   size_t bytes() const;
+  // Whether level `level` has any cell below max_cost(): then the cells
+  // that do lie in [x0, x1] x [y0, y1], the level's raster.
+  bool raster(int level, int* x0, int* y0, int* x1, int* y1) const {
+    const Level& l = levels_[static_cast<size_t>(level)];
+    *x0 = l.x0;
+    *y0 = l.y0;
+    *x1 = l.x0 + l.w - 1;
+    *y1 = l.y0 + l.h - 1;
+    return !l.c.empty();
+  }
 
   // The level-0 cost of a cell at distance `d` from the nearest obstacle.
   static int point_cost(int d, int window) {

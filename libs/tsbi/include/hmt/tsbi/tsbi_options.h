@@ -63,11 +63,15 @@ struct TsbiOptions {
   // separation (in x, y and heading) to a better one are not refined; the
   // per-map cost stacks are cached up to bnb_cache_mb.
   double bnb_step_xy = 0.05;          // [m]
-  double bnb_step_theta = 0.005;      // [rad]
-  int bnb_levels = 7;
+  double bnb_step_theta = 0.01;       // [rad]
+  int bnb_levels = 6;
   double bnb_separation_xy = 0.3;     // [m]
   double bnb_separation_theta = 0.1;  // [rad]
-  int bnb_cache_mb = 64;
+  // Maxima are refined only if their cost is within this fraction of the
+  // points' saturated cost of the best one's (a look-alike must score
+  // nearly as well to matter; the weak maxima cost most of the search).
+  double bnb_margin = 0.1;
+  int bnb_cache_mb = 8;
   // Before matching, a branch and bound proves for most hopeless areas that
   // no pose in the gate lets min_match_ratio of the points reach an
   // obstacle (match_field.h); it gives up (and the area is matched) after
