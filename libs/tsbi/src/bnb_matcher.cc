@@ -192,6 +192,10 @@ std::vector<SearchMode> bnb_modes(const CostStack& stack, const SearchLattice& l
     for (int j = -l.ny; j <= l.ny; j += 1 << top)
       for (int i = -l.nx; i <= l.nx; i += 1 << top) push(top, t, i, j);
   while (!heap.empty() && static_cast<int>(modes.size()) < query.count) {
+    if (st.blocks >= query.max_blocks) {
+      st.stopped = true;
+      break;
+    }
     std::pop_heap(heap.begin(), heap.end(), cmp);
     const Block b = heap.back();
     heap.pop_back();

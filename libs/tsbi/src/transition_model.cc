@@ -164,6 +164,7 @@ std::vector<Pose2D> TransitionModel::bnb_search(const CostStack& stack, const Ma
   q.count = opt_.search_modes;
   q.separation_xy = opt_.bnb_separation_xy;
   q.separation_theta = opt_.bnb_separation_theta;
+  q.max_blocks = opt_.bnb_max_blocks;
   q.margin = static_cast<int64_t>(
       std::floor(opt_.bnb_margin * static_cast<double>(pts.size()) * stack.max_cost()));
   // No start is wanted where no mode can pass the ratio gate: a lattice

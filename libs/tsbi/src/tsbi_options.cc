@@ -28,6 +28,8 @@ void TsbiOptions::load(Config& cfg, const std::string& s) {
   bnb_separation_theta = cfg.get_double(s, "bnb_separation_theta", bnb_separation_theta);
   bnb_cache_mb = cfg.get_int(s, "bnb_cache_mb", bnb_cache_mb);
   bnb_margin = cfg.get_double(s, "bnb_margin", bnb_margin);
+  bnb_max_blocks = cfg.get_int(s, "bnb_max_blocks", bnb_max_blocks);
+  require(bnb_max_blocks >= 1000, s, "bnb_max_blocks", ">= 1000");
   require(bnb_margin >= 0 && bnb_margin <= 1, s, "bnb_margin", "in [0, 1]");
   require(bnb_step_xy > 0, s, "bnb_step_xy", "> 0");
   // (Headings and costs are packed in 16 and 32 bits in the search.)

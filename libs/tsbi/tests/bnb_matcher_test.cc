@@ -130,6 +130,20 @@ TEST(BnbModes, EqualTheExhaustiveSearchOnRandomWindows) {
         EXPECT_LE(got[k - 1].cost, got[k].cost);
       }
     }
+    // Under a budget of blocks the search stops early, with a prefix of
+    // the modes.
+    ModeQuery budget = q;
+    budget.max_blocks = std::max<int64_t>(1, stats.blocks / 2);
+    SearchStats cut;
+    const auto part = bnb_modes(stack, l, pts, budget, &cut);
+    EXPECT_FALSE(stats.stopped);
+    if (cut.stopped) {
+      EXPECT_LE(part.size(), got.size());
+    } else {
+      EXPECT_EQ(part.size(), got.size());
+    }
+    for (size_t k = 0; k < part.size() && k < got.size(); ++k)
+      EXPECT_EQ(part[k].cost, got[k].cost) << "trial " << trial << " mode " << k;
     ++compared;
     multi += got.size() > 1;
     // The bound pruned: fewer blocks than the lattice has poses.

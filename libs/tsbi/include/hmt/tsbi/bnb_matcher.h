@@ -83,12 +83,18 @@ struct ModeQuery {
   int64_t max_cost = INT64_MAX;
   // ... nor costlier than the best mode by more than this.
   int64_t margin = INT64_MAX;
+  // The search stops after bounding this many blocks, with the modes found
+  // by then (exact up to there: each is the best of what was left when it
+  // came out, but later ones may be missing). Bounds the time and memory
+  // of a window where the bound cannot prune (a long look-alike corridor).
+  int64_t max_blocks = INT64_MAX;
 };
 
 // What a branch and bound did (for tests and the cost report).
 struct SearchStats {
   int64_t blocks = 0;  // blocks and poses whose bound was computed
   int64_t poses = 0;   // poses popped in cost order
+  bool stopped = false;  // max_blocks was reached
 };
 
 // At most 100000 points and 32767 headings each side of the mean.

@@ -71,6 +71,10 @@ struct TsbiOptions {
   // points' saturated cost of the best one's (a look-alike must score
   // nearly as well to matter; the weak maxima cost most of the search).
   double bnb_margin = 0.1;
+  // A search stops after bounding this many blocks of poses (about 0.3 s),
+  // with the maxima found by then: the cost of one event stays bounded
+  // where the bound cannot prune (long look-alike corridors).
+  int bnb_max_blocks = 1000000;
   int bnb_cache_mb = 8;
   // Before matching, a branch and bound proves for most hopeless areas that
   // no pose in the gate lets min_match_ratio of the points reach an
