@@ -176,7 +176,15 @@ std::vector<SearchMode> bnb_modes(const CostStack& stack, const SearchLattice& l
   auto last = [](int first, int level, int end) { return std::min(first + (1 << level) - 1, end); };
   std::vector<Block> heap;
   auto cmp = [](const Block& a, const Block& b) { return before(b, a); };
+  // The heap never holds more blocks than were bounded: reserved once
+  // under a budget, it is never copied while it grows (the copy would
+  // double the search's peak memory).
+  if (query.max_blocks < (int64_t{1} << 22)) heap.reserve(static_cast<size_t>(query.max_blocks));
   auto push = [&](int level, int t, int i, int j) {
+    if (st.blocks >= query.max_blocks) {
+      st.stopped = true;
+      return;
+    }
     if (!l.block_meets_gate(i, last(i, level, l.nx), j, last(j, level, l.ny), t)) return;
     if (level == 0 && !l.in_gate(i, j, t)) return;
     const int64_t c = bound(level, t, i, j);
@@ -191,11 +199,7 @@ std::vector<SearchMode> bnb_modes(const CostStack& stack, const SearchLattice& l
   for (int t = -l.nt; t <= l.nt; ++t)
     for (int j = -l.ny; j <= l.ny; j += 1 << top)
       for (int i = -l.nx; i <= l.nx; i += 1 << top) push(top, t, i, j);
-  while (!heap.empty() && static_cast<int>(modes.size()) < query.count) {
-    if (st.blocks >= query.max_blocks) {
-      st.stopped = true;
-      break;
-    }
+  while (!heap.empty() && static_cast<int>(modes.size()) < query.count && !st.stopped) {
     std::pop_heap(heap.begin(), heap.end(), cmp);
     const Block b = heap.back();
     heap.pop_back();
