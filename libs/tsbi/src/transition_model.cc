@@ -464,10 +464,30 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
   std::vector<bool> needs_stack(areas.size());
   for (size_t i = 0; i < areas.size(); ++i)
     needs_stack[i] = searches[i].wide && opt_.search == TsbiOptions::WideSearch::kBnb;
-  const auto stacks = stacks_for(map, areas, needs_stack);
-  for_each_index(areas.size(), [&](size_t i) {
-    add_wide_starts(&searches[i], *fields[i], stacks[i].get(), obs);
+  // The wide searches, a few areas at a time (as many as there are
+  // threads): an area's cost stack lives only while it is searched, unless
+  // the cache keeps it, so an event with many wide candidates holds at most
+  // the cache's budget plus one stack per thread.
+  const size_t group = pool_ ? static_cast<size_t>(std::max(pool_->threads(), 1)) : 1;
+  std::vector<size_t> wide, narrow;
+  for (size_t i = 0; i < areas.size(); ++i) (needs_stack[i] ? wide : narrow).push_back(i);
+  for_each_index(narrow.size(), [&](size_t j) {
+    const size_t i = narrow[j];
+    add_wide_starts(&searches[i], *fields[i], nullptr, obs);
   });
+  for (size_t first = 0; first < wide.size(); first += group) {
+    const size_t end = std::min(first + group, wide.size());
+    std::vector<bool> now(areas.size(), false);
+    for (size_t j = first; j < end; ++j) now[wide[j]] = true;
+    const auto stacks = stacks_for(map, areas, now);
+    for_each_index(end - first, [&](size_t j) {
+      const size_t i = wide[first + j];
+      add_wide_starts(&searches[i], *fields[i], stacks[i].get(), obs);
+    });
+  }
+  // Nothing needed any more: the cache drops maps no hypothesis holds and
+  // comes back within its budget.
+  stacks_for(map, areas, std::vector<bool>(areas.size(), false));
   std::vector<std::pair<size_t, size_t>> jobs;  // (area, start)
   std::vector<std::vector<Match>> matches(areas.size());
   for (size_t i = 0; i < areas.size(); ++i) {
