@@ -10,7 +10,10 @@ there minus one (ids count the areas created so far, from 1); at an event
 whose new-area outcome was dropped (too improbable to follow), the largest
 area id it names. With several
 folders (e.g. before and after a change) their points share the axes. The PNG
-defaults to OUT_DIR/report/tsbi_cost.png of the first folder.
+defaults to OUT_DIR/report/tsbi_cost.png of the first folder. Each folder's
+events are also summarised on stdout: their count, total and median time,
+and the median in each quarter of the area count (does the cost grow with
+the map?).
 """
 import argparse
 import csv
@@ -46,6 +49,22 @@ def events(out_dir):
     return pts
 
 
+def median(v):
+    v = sorted(v)
+    return v[len(v) // 2] if v else float("nan")
+
+
+def summary(label, pts):
+    """One line: events, total, median, and the median per quarter of the
+    area count."""
+    top = max(x for x, _ in pts)
+    quarters = [[y for x, y in pts if q * top / 4 < x <= (q + 1) * top / 4 or (q == 0 and x == 0)]
+                for q in range(4)]
+    return (f"{label}: {len(pts)} events, total {sum(y for _, y in pts) / 1000:.2f} s, "
+            f"median {median([y for _, y in pts]):.1f} ms; median by area quarter (up to "
+            f"{top} areas): " + ", ".join(f"{median(q):.1f} ms ({len(q)})" for q in quarters))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("out_dirs", nargs="+")
@@ -59,6 +78,7 @@ def main():
         pts = events(d)
         xs, ys = zip(*pts)
         total = sum(ys)
+        print(summary(label, pts))
         ax.scatter(xs, ys, s=10, alpha=0.6,
                    label=f"{label}: {len(pts)} events, {total / 1000:.1f} s, "
                          f"median {sorted(ys)[len(ys) // 2]:.0f} ms")

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "hmt/area/ncut.h"
+#include "hmt/tsbi/bnb_matcher.h"
 #include "hmt/common/log_sum_exp.h"
 #include "hmt/area/sso_graph.h"
 #include "hmt/topology/shortest_paths.h"
@@ -153,6 +154,35 @@ std::vector<Pose2D> TransitionModel::wide_search(const MatchField& field,
   return separated_maxima(std::move(cands), l, opt_.search_modes);
 }
 
+std::vector<Pose2D> TransitionModel::bnb_search(const CostStack& stack, const MatchField& field,
+                                                const PoseGaussian& prior,
+                                                const metric_slam::ScanPoints& obs) const {
+  const std::vector<Point2D> pts = metric_slam::spread_subset(obs, opt_.search_points).hit;
+  const SearchLattice l = gate_lattice(prior, opt_.gate, opt_.bnb_step_xy, opt_.bnb_step_theta,
+                                       field.resolution());
+  ModeQuery q;
+  q.count = opt_.search_modes;
+  q.separation_xy = opt_.bnb_separation_xy;
+  q.separation_theta = opt_.bnb_separation_theta;
+  q.max_blocks = opt_.bnb_max_blocks;
+  q.margin = static_cast<int64_t>(
+      std::floor(opt_.bnb_margin * static_cast<double>(pts.size()) * stack.max_cost()));
+  // No start is wanted where no mode can pass the ratio gate: a lattice
+  // pose is a start only if its cost is at most that of min_match_ratio of
+  // the points `window` cells from an obstacle (matched, as the ratio gate
+  // counts them) and the rest saturated. (A limit on the search's effort
+  // in the ratio gate's terms, not a proof: the refined mode lies up to
+  // half a lattice step away, and the search's points are a subset.)
+  const double rho = opt_.min_match_ratio;
+  const int near_cost = CostStack::point_cost(matcher_.options().window,
+                                              matcher_.options().coarse_window);
+  q.max_cost = static_cast<int64_t>(std::floor(
+      static_cast<double>(pts.size()) * (rho * near_cost + (1.0 - rho) * stack.max_cost())));
+  std::vector<Pose2D> out;
+  for (const SearchMode& m : bnb_modes(stack, l, pts, q)) out.push_back(m.pose);
+  return out;
+}
+
 bool TransitionModel::same_area(const topology::Area& area, const Pose2D& robot,
                                 const Observations& obs) const {
   if (area.keyframes.empty() || obs.scans.empty()) return true;  // nothing to check with
@@ -216,12 +246,24 @@ TransitionModel::Search TransitionModel::prepare_search(const grid::OccupancyGri
   out.l0 = matcher_.score(empty, Pose2D(), obs).log_likelihood * out.scale;
   out.starts = match_starts(prior, opt_.start_sigmas);
   // A prior much wider than the matcher's basin (a long loop) is searched
-  // on a lattice first.
-  if (std::max(prior.cov(0, 0), prior.cov(1, 1)) > 0.3 * 0.3 || prior.cov(2, 2) > 0.1 * 0.1) {
-    const std::vector<Pose2D> wide = wide_search(field, prior, obs);
-    out.starts.insert(out.starts.begin() + 1, wide.begin(), wide.end());
-  }
+  // as a whole first (add_wide_starts).
+  out.wide = std::max(prior.cov(0, 0), prior.cov(1, 1)) > 0.3 * 0.3 || prior.cov(2, 2) > 0.1 * 0.1;
   return out;
+}
+
+void TransitionModel::add_wide_starts(Search* search, const MatchField& field,
+                                      const CostStack* stack, const Observations& obs) const {
+  if (!search->wide) return;
+  const std::vector<Pose2D> wide = opt_.search == TsbiOptions::WideSearch::kBnb
+                                       ? bnb_search(*stack, field, search->prior, obs.points)
+                                       : wide_search(field, search->prior, obs.points);
+  search->starts.insert(search->starts.begin() + 1, wide.begin(), wide.end());
+}
+
+std::shared_ptr<const CostStack> TransitionModel::make_stack(const MatchField& field) const {
+  const int step = std::max(1, static_cast<int>(std::lround(opt_.bnb_step_xy / field.resolution())));
+  return std::make_shared<const CostStack>(field, matcher_.options().coarse_window, step,
+                                           opt_.bnb_levels);
 }
 
 TransitionModel::Match TransitionModel::match_from(const grid::OccupancyGrid& map,
@@ -289,7 +331,10 @@ ExpectedLikelihood TransitionModel::sum_modes(const Search& search,
 ExpectedLikelihood TransitionModel::expected_likelihood(
     const grid::OccupancyGrid& map, const MatchField& field, const PoseGaussian& prior,
     const Observations& obs) const {
-  const Search search = prepare_search(map, field, prior, obs);
+  Search search = prepare_search(map, field, prior, obs);
+  std::shared_ptr<const CostStack> stack;
+  if (search.wide && opt_.search == TsbiOptions::WideSearch::kBnb) stack = make_stack(field);
+  add_wide_starts(&search, field, stack.get(), obs);
   std::vector<Match> matches;
   for (const Pose2D& start : search.starts) matches.push_back(match_from(map, start, obs));
   return sum_modes(search, matches, obs);
@@ -351,6 +396,57 @@ std::vector<std::shared_ptr<const MatchField>> TransitionModel::fields_for(
   return out;
 }
 
+std::vector<std::shared_ptr<const CostStack>> TransitionModel::stacks_for(
+    const topology::HmtMap& map, const std::vector<Outcome>& areas,
+    const std::vector<bool>& needed) {
+  ++events_;
+  // Stacks of maps whose fields went (no hypothesis holds the map) go too.
+  for (auto it = stacks_.begin(); it != stacks_.end();) {
+    const auto f = fields_.find(it->first);
+    it = f != fields_.end() && f->second.field == it->second.field ? std::next(it)
+                                                                    : stacks_.erase(it);
+  }
+  std::vector<std::shared_ptr<const grid::OccupancyGrid>> missing;
+  for (size_t i = 0; i < areas.size(); ++i) {
+    if (!needed[i]) continue;
+    const auto& m = map.area(areas[i].area).map;
+    const auto it = stacks_.find(m.get());
+    if (it != stacks_.end())
+      it->second.used = events_;
+    else if (std::find(missing.begin(), missing.end(), m) == missing.end())
+      missing.push_back(m);
+  }
+  std::vector<std::shared_ptr<const CostStack>> built(missing.size());
+  for_each_index(missing.size(), [&](size_t i) {
+    built[i] = make_stack(*fields_.at(missing[i].get()).field);
+  });
+  for (size_t i = 0; i < missing.size(); ++i)
+    stacks_[missing[i].get()] = {fields_.at(missing[i].get()).field, built[i], events_};
+  std::vector<std::shared_ptr<const CostStack>> out(areas.size());
+  for (size_t i = 0; i < areas.size(); ++i)
+    if (needed[i]) out[i] = stacks_.at(map.area(areas[i].area).map.get()).stack;
+  // Over the budget: the least recently used go (oldest event first, then
+  // by map address order -- which only decides what is rebuilt later,
+  // never a result), but not those this event uses (`out` holds them).
+  const size_t budget = static_cast<size_t>(opt_.bnb_cache_mb) << 20;
+  while (cached_stack_bytes() > budget) {
+    auto victim = stacks_.end();
+    for (auto it = stacks_.begin(); it != stacks_.end(); ++it)
+      if (it->second.used != events_ &&
+          (victim == stacks_.end() || it->second.used < victim->second.used))
+        victim = it;
+    if (victim == stacks_.end()) break;
+    stacks_.erase(victim);
+  }
+  return out;
+}
+
+size_t TransitionModel::cached_stack_bytes() const {
+  size_t n = 0;
+  for (const auto& [key, s] : stacks_) n += s.stack->bytes();
+  return n;
+}
+
 std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
                                                AreaId current,
                                                const PoseGaussian& robot,
@@ -365,6 +461,33 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
   for_each_index(areas.size(), [&](size_t i) {
     searches[i] = prepare_search(*map.area(areas[i].area).map, *fields[i], areas[i].prior, obs);
   });
+  std::vector<bool> needs_stack(areas.size());
+  for (size_t i = 0; i < areas.size(); ++i)
+    needs_stack[i] = searches[i].wide && opt_.search == TsbiOptions::WideSearch::kBnb;
+  // The wide searches, a few areas at a time (as many as there are
+  // threads): an area's cost stack lives only while it is searched, unless
+  // the cache keeps it, so an event with many wide candidates holds at most
+  // the cache's budget plus one stack per thread.
+  const size_t group = pool_ ? static_cast<size_t>(std::max(pool_->threads(), 1)) : 1;
+  std::vector<size_t> wide, narrow;
+  for (size_t i = 0; i < areas.size(); ++i) (needs_stack[i] ? wide : narrow).push_back(i);
+  for_each_index(narrow.size(), [&](size_t j) {
+    const size_t i = narrow[j];
+    add_wide_starts(&searches[i], *fields[i], nullptr, obs);
+  });
+  for (size_t first = 0; first < wide.size(); first += group) {
+    const size_t end = std::min(first + group, wide.size());
+    std::vector<bool> now(areas.size(), false);
+    for (size_t j = first; j < end; ++j) now[wide[j]] = true;
+    const auto stacks = stacks_for(map, areas, now);
+    for_each_index(end - first, [&](size_t j) {
+      const size_t i = wide[first + j];
+      add_wide_starts(&searches[i], *fields[i], stacks[i].get(), obs);
+    });
+  }
+  // Nothing needed any more: the cache drops maps no hypothesis holds and
+  // comes back within its budget.
+  stacks_for(map, areas, std::vector<bool>(areas.size(), false));
   std::vector<std::pair<size_t, size_t>> jobs;  // (area, start)
   std::vector<std::vector<Match>> matches(areas.size());
   for (size_t i = 0; i < areas.size(); ++i) {

@@ -17,6 +17,27 @@ void TsbiOptions::load(Config& cfg, const std::string& s) {
   min_probability = cfg.get_double(s, "min_probability", min_probability);
   area_check = cfg.get_bool(s, "area_check", area_check);
   area_check_keyframes = cfg.get_int(s, "area_check_keyframes", area_check_keyframes);
+  const std::string method =
+      cfg.get_string(s, "search", search == WideSearch::kBnb ? "bnb" : "lattice");
+  require(method == "bnb" || method == "lattice", s, "search", "bnb or lattice");
+  search = method == "bnb" ? WideSearch::kBnb : WideSearch::kLattice;
+  bnb_step_xy = cfg.get_double(s, "bnb_step_xy", bnb_step_xy);
+  bnb_step_theta = cfg.get_double(s, "bnb_step_theta", bnb_step_theta);
+  bnb_levels = cfg.get_int(s, "bnb_levels", bnb_levels);
+  bnb_separation_xy = cfg.get_double(s, "bnb_separation_xy", bnb_separation_xy);
+  bnb_separation_theta = cfg.get_double(s, "bnb_separation_theta", bnb_separation_theta);
+  bnb_cache_mb = cfg.get_int(s, "bnb_cache_mb", bnb_cache_mb);
+  bnb_margin = cfg.get_double(s, "bnb_margin", bnb_margin);
+  bnb_max_blocks = cfg.get_int(s, "bnb_max_blocks", bnb_max_blocks);
+  require(bnb_max_blocks >= 1000, s, "bnb_max_blocks", ">= 1000");
+  require(bnb_margin >= 0 && bnb_margin <= 1, s, "bnb_margin", "in [0, 1]");
+  require(bnb_step_xy > 0, s, "bnb_step_xy", "> 0");
+  // (Headings and costs are packed in 16 and 32 bits in the search.)
+  require(bnb_step_theta >= 1e-4, s, "bnb_step_theta", ">= 1e-4");
+  require(bnb_levels >= 1 && bnb_levels <= 12, s, "bnb_levels", "in [1, 12]");
+  require(bnb_separation_xy >= 0, s, "bnb_separation_xy", ">= 0");
+  require(bnb_separation_theta >= 0, s, "bnb_separation_theta", ">= 0");
+  require(bnb_cache_mb >= 0, s, "bnb_cache_mb", ">= 0");
   search_step_xy = cfg.get_double(s, "search_step_xy", search_step_xy);
   search_step_theta = cfg.get_double(s, "search_step_theta", search_step_theta);
   search_points = cfg.get_int(s, "search_points", search_points);
@@ -26,7 +47,8 @@ void TsbiOptions::load(Config& cfg, const std::string& s) {
   require(area_check_keyframes >= 1, s, "area_check_keyframes", ">= 1");
   require(search_step_xy > 0, s, "search_step_xy", "> 0");
   require(search_step_theta > 0, s, "search_step_theta", "> 0");
-  require(search_points >= 10, s, "search_points", ">= 10");
+  require(search_points >= 10 && search_points <= 100000, s, "search_points",
+          "in [10, 100000]");
   require(search_max_poses >= 1000, s, "search_max_poses", ">= 1000");
   require(search_modes >= 1 && search_modes <= 100, s, "search_modes", "in [1, 100]");
   require(bound_boxes >= 0, s, "bound_boxes", ">= 0 (0: off)");

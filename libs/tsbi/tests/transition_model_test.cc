@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+
 #include <memory>
 
 #include "test_maps.h"
@@ -202,6 +204,58 @@ TEST(TransitionModel, KeepsTheMatchFieldsOfHeldMapsOnly) {
   }
   m.evaluate(r.s.map, 3, r.robot, r.obs);
   EXPECT_EQ(m.cached_fields(), 2u);  // `other`'s map of area 1 died with it
+}
+
+// A return after a long loop: the prior is wide (3 m, 0.4 rad) and the true
+// pose lies far from its mean, away from every matcher start. The lattice,
+// coarsened to its 50000 poses (0.65 m / 0.09 rad steps), finds no pose
+// close enough for the matcher to converge: the closure is missed. The
+// branch and bound scores every pose of its 0.05 m / 0.01 rad lattice in
+// the gate, and the best is the truth.
+TEST(TransitionModel, WideSearchFindsAFarReturnTheCoarseLatticeMisses) {
+  TwoKnownAreas s;
+  const auto world = testing_sim::office_world();
+  const Pose2D truth(3, 3, 0.2);
+  const auto obs = observe(world, {{2.5, 2.9, 0.2}, truth});
+  const PoseGaussian prior(truth + Pose2D(4.5, -2.0, 0.55), diag(3.0, 0.4));
+  const Eigen::Vector3d e = topology::difference(truth, prior.mean);
+  ASSERT_LT(e.dot(prior.cov.inverse() * e), TsbiOptions{}.gate);  // the truth is in the gate
+  auto with = [&](TsbiOptions::WideSearch search) {
+    TsbiOptions o;
+    o.search = search;
+    return TransitionModel(o, metric_slam::MatcherOptions{}, 30.0, area::AreaOptions{})
+        .expected_likelihood(*s.map.area(1).map, prior, obs);
+  };
+  auto found = [&](const ExpectedLikelihood& f) {
+    return f.candidate && std::hypot(f.robot.mean.x - truth.x, f.robot.mean.y - truth.y) < 0.05 &&
+           std::fabs(wrap_angle(f.robot.mean.theta - truth.theta)) < 0.02;
+  };
+  EXPECT_FALSE(found(with(TsbiOptions::WideSearch::kLattice)));
+  const ExpectedLikelihood bnb = with(TsbiOptions::WideSearch::kBnb);
+  EXPECT_TRUE(found(bnb));
+  EXPECT_GT(bnb.match_ratio, 0.8);
+}
+
+// The cost stacks are a cache: with no budget for them (each rebuilt at
+// every event) the outcomes are the same, and the stacks an event did not
+// use are not kept.
+TEST(TransitionModel, SameOutcomesWhateverTheStackBudget) {
+  ReturnToAreaOne r;
+  TsbiOptions none;
+  none.log_eta = 10.0;
+  none.bnb_cache_mb = 0;
+  TransitionModel unbudgeted = model();
+  TransitionModel budgetless(none, metric_slam::MatcherOptions{}, 30.0, area::AreaOptions{});
+  const auto a = unbudgeted.evaluate(r.s.map, 3, r.robot, r.obs);
+  ASSERT_GE(a.size(), 2u);
+  EXPECT_GE(unbudgeted.cached_stacks(), 1u);  // the prior is wide: the search ran
+  expect_same_outcomes(a, budgetless.evaluate(r.s.map, 3, r.robot, r.obs));
+  expect_same_outcomes(a, budgetless.evaluate(r.s.map, 3, r.robot, r.obs));
+  // An event whose prior is narrow uses no stack: the budgetless model
+  // drops the ones it held.
+  budgetless.evaluate(r.s.map, 3, PoseGaussian(r.robot.mean, diag(0.05, 0.01)), r.obs);
+  EXPECT_EQ(budgetless.cached_stacks(), 0u);
+  EXPECT_EQ(budgetless.cached_stack_bytes(), 0u);
 }
 
 TEST(ProbableOutcomes, KeepsThoseAboveTheThresholdOrTheBest) {

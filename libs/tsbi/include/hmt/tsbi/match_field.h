@@ -43,6 +43,11 @@ class MatchField {
     return distance(floor_cell(x * inv_resolution_), floor_cell(y * inv_resolution_));
   }
   size_t bytes() const { return d_.size(); }
+  // The raster: first cell and size; it spans the obstacles' bounding box.
+  int x0() const { return x0_; }
+  int y0() const { return y0_; }
+  int width() const { return w_; }
+  int height() const { return h_; }
 
   static int floor_cell(double v) {
     const int i = static_cast<int>(v);

@@ -31,7 +31,10 @@
 // sums the distinct modes that explain at least min_match_ratio of the points
 // and lie inside the prior's gate; areas with none are not candidates. When
 // the prior is much wider than the matcher's basin (after a long loop), the
-// starts also include the best poses of a lattice search over the gate.
+// starts also include the best distinct maxima of a wide search over the
+// whole gate: by default an exact branch and bound over a lattice as fine
+// as the grid (bnb_matcher.h), so that a return is not missed because the
+// prior is wide; or a lattice coarsened to a fixed number of poses.
 //
 // The area check. Areas overlap: what the robot sees just after leaving an
 // area is still partly in that area's map, and in its predecessor's. The
@@ -49,9 +52,13 @@
 // of them, that no pose in the prior's gate lets min_match_ratio of the
 // points reach an obstacle: no mode could pass the ratio gate, so the area
 // is not a candidate -- the answer the full evaluation would give, without
-// the matching. The wide search scores its lattice on the same raster (one
-// lookup per point). Rasters are built once per archived map and kept while
-// a hypothesis holds the map; the candidates' matcher starts run in one
+// the matching. The wide search scores its poses on the same raster (one
+// lookup per point), the branch and bound on a stack of min-filtered
+// rasters of it (cost_stack.h). Rasters are built once per archived map
+// and kept while a hypothesis holds the map (the stacks, larger, only up
+// to a byte budget, the least recently used dropped first; a dropped
+// stack is rebuilt when needed, to the same bytes); the candidates' matcher
+// starts run in one
 // parallel loop on the worker pool (each alone, their modes summed in start
 // order, so the result does not depend on the threads).
 #pragma once
@@ -67,6 +74,7 @@
 #include "hmt/metric_slam/worker_pool.h"
 #include "hmt/topology/hmt_map.h"
 #include "hmt/topology/pose_gaussian.h"
+#include "hmt/tsbi/cost_stack.h"
 #include "hmt/tsbi/match_field.h"
 #include "hmt/tsbi/observations.h"
 #include "hmt/tsbi/tsbi_options.h"
@@ -122,6 +130,9 @@ class TransitionModel {
   const TsbiOptions& options() const { return opt_; }
   // Match fields held (for tests and memory accounting).
   size_t cached_fields() const { return fields_.size(); }
+  // Cost stacks held, and their bytes.
+  size_t cached_stacks() const { return stacks_.size(); }
+  size_t cached_stack_bytes() const;
 
  private:
   // The known areas the observations can reach from the prior's gate, each
@@ -134,18 +145,26 @@ class TransitionModel {
   // parallel) and cached. Fields of maps no hypothesis holds are dropped.
   std::vector<std::shared_ptr<const MatchField>> fields_for(
       const topology::HmtMap& map, const std::vector<Outcome>& areas);
+  // The cost stack of each area whose search is wide (null for the
+  // others): from the cache, or built (in parallel) and cached.
+  std::vector<std::shared_ptr<const CostStack>> stacks_for(
+      const topology::HmtMap& map, const std::vector<Outcome>& areas,
+      const std::vector<bool>& needed);
+  std::shared_ptr<const CostStack> make_stack(const MatchField& field) const;
   // F(gamma) in three steps, so that evaluate() can run the matcher
   // starts of every candidate area in one parallel loop (an event often
   // has a single candidate, whose 27+ starts would otherwise run on one
   // thread): the search's set-up (the widened prior, the gates, the starts;
-  // no starts when a gate already rules the area out), one match per
-  // start, and the modes' Laplace sum in start order.
+  // no starts when a gate already rules the area out; then, for a wide
+  // prior, the wide search's maxima), one match per start, and the modes'
+  // Laplace sum in start order.
   struct Search {
     topology::PoseGaussian prior;  // widened by prior_std_*
     Eigen::Matrix3d prior_inverse = Eigen::Matrix3d::Identity();
     double scale = 0.0;           // log-likelihood tempering
     double l0 = 0.0;              // log-likelihood of an empty map
     std::vector<Pose2D> starts;
+    bool wide = false;  // the prior is wide: add_wide_starts() is due
   };
   struct Match {
     Pose2D pose;
@@ -154,6 +173,10 @@ class TransitionModel {
   };
   Search prepare_search(const grid::OccupancyGrid& map, const MatchField& field,
                         const topology::PoseGaussian& prior, const Observations& obs) const;
+  // The wide search's maxima, after the prior mean's start. `stack`: the
+  // field's cost stack (the branch and bound only).
+  void add_wide_starts(Search* search, const MatchField& field, const CostStack* stack,
+                       const Observations& obs) const;
   Match match_from(const grid::OccupancyGrid& map, const Pose2D& start,
                    const Observations& obs) const;
   ExpectedLikelihood sum_modes(const Search& search, const std::vector<Match>& matches,
@@ -166,6 +189,11 @@ class TransitionModel {
   std::vector<Pose2D> wide_search(const MatchField& field,
                                   const topology::PoseGaussian& prior,
                                   const metric_slam::ScanPoints& obs) const;
+  // The best distinct maxima of every pose of the branch and bound's
+  // lattice in the gate.
+  std::vector<Pose2D> bnb_search(const CostStack& stack, const MatchField& field,
+                                 const topology::PoseGaussian& prior,
+                                 const metric_slam::ScanPoints& obs) const;
   // The area check of TsbiOptions::area_check, with the robot at `robot` in
   // the area's frame.
   bool same_area(const topology::Area& area, const Pose2D& robot,
@@ -185,6 +213,17 @@ class TransitionModel {
     std::shared_ptr<const MatchField> field;
   };
   std::map<const grid::OccupancyGrid*, CachedField> fields_;
+  // Cost stacks by map, each with the field it was built from (a stack
+  // whose map's field went or was replaced goes too; holding the field,
+  // not the map, it does not keep the map alive) and the event that last
+  // used it; the least recently used go first beyond the budget.
+  struct CachedStack {
+    std::shared_ptr<const MatchField> field;
+    std::shared_ptr<const CostStack> stack;
+    uint64_t used = 0;
+  };
+  std::map<const grid::OccupancyGrid*, CachedStack> stacks_;
+  uint64_t events_ = 0;
 };
 
 // The outcomes worth following: indices of those with probability >=

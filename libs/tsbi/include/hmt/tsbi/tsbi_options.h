@@ -40,16 +40,42 @@ struct TsbiOptions {
   // the new one would pass for a return to it.
   bool area_check = true;
   int area_check_keyframes = 60;  // at most this many of the area's, nearest
-  // Wide search for the modes: when the prior is broad, candidate poses on a
-  // lattice over the prior's gate are scored first (on a subset of points,
-  // with a wide window) and the best local maxima are refined.
-  double search_step_xy = 0.2;       // [m]
-  double search_step_theta = 0.03;   // [rad]
-  // Each lattice pose costs one raster lookup per point (match_field.h):
+  // Wide search for the modes: when the prior is broad, candidate poses
+  // over the prior's gate are scored first (on a subset of points, with a
+  // wide window; the score of cost_stack.h) and the best distinct maxima
+  // are refined. Two ways:
+  //  - kBnb: the exact best of every pose of a fine lattice in the gate, by
+  //    branch and bound (bnb_matcher.h), whatever the gate's size;
+  //  - kLattice: the best poses of a lattice over the gate, coarsened to at
+  //    most search_max_poses poses (a wide gate gets coarse steps and can
+  //    miss the true pose).
+  enum class WideSearch { kBnb, kLattice };
+  WideSearch search = WideSearch::kBnb;
   // 200 points separate the right place from a look-alike better than 80.
   int search_points = 200;
-  int search_max_poses = 50000;     // the lattice is coarsened beyond this
   int search_modes = 8;              // maxima refined
+  // Lattice: steps before coarsening, and the cap.
+  double search_step_xy = 0.2;       // [m]
+  double search_step_theta = 0.03;   // [rad]
+  int search_max_poses = 50000;
+  // Branch and bound: the lattice's steps (the translation in whole cells);
+  // blocks of up to 2^(bnb_levels-1) steps a side; maxima closer than the
+  // separation (in x, y and heading) to a better one are not refined; the
+  // per-map cost stacks are cached up to bnb_cache_mb.
+  double bnb_step_xy = 0.05;          // [m]
+  double bnb_step_theta = 0.01;       // [rad]
+  int bnb_levels = 6;
+  double bnb_separation_xy = 0.3;     // [m]
+  double bnb_separation_theta = 0.1;  // [rad]
+  // Maxima are refined only if their cost is within this fraction of the
+  // points' saturated cost of the best one's (a look-alike must score
+  // nearly as well to matter; the weak maxima cost most of the search).
+  double bnb_margin = 0.1;
+  // A search stops after bounding this many blocks of poses (about 0.3 s),
+  // with the maxima found by then: the cost of one event stays bounded
+  // where the bound cannot prune (long look-alike corridors).
+  int bnb_max_blocks = 1000000;
+  int bnb_cache_mb = 8;
   // Before matching, a branch and bound proves for most hopeless areas that
   // no pose in the gate lets min_match_ratio of the points reach an
   // obstacle (match_field.h); it gives up (and the area is matched) after

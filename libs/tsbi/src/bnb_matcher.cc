@@ -1,0 +1,260 @@
+#include "hmt/tsbi/bnb_matcher.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <queue>
+
+#include "hmt/common/error.h"
+
+namespace hmt::tsbi {
+
+Pose2D SearchLattice::pose(int i, int j, int t) const {
+  return Pose2D(center.x + i * step_xy(), center.y + j * step_xy(),
+                wrap_angle(center.theta + t * step_theta));
+}
+
+bool SearchLattice::in_gate(int i, int j, int t) const {
+  const Eigen::Vector3d e(i * step_xy(), j * step_xy(), t * step_theta);
+  return e.dot(information * e) <= gate;
+}
+
+bool SearchLattice::block_meets_gate(int i0, int i1, int j0, int j1, int t) const {
+  const Eigen::Matrix3d& M = information;
+  const double sx = step_xy();
+  const double th = t * step_theta;
+  const double x0 = i0 * sx, x1 = i1 * sx, y0 = j0 * sx, y1 = j1 * sx;
+  // q(x, y) = a x^2 + 2 b x y + c y^2 + 2 (d x + e y) + f at this heading:
+  // convex, so its minimum over the block is the free minimum if that lies
+  // inside, else the least of the four edges' clamped minima.
+  const double a = M(0, 0), b = M(0, 1), c = M(1, 1);
+  const double d = M(0, 2) * th, e = M(1, 2) * th, f = M(2, 2) * th * th;
+  auto q = [&](double x, double y) {
+    return a * x * x + 2 * b * x * y + c * y * y + 2 * (d * x + e * y) + f;
+  };
+  const double det = a * c - b * b;
+  double best;
+  const double xf = (b * e - c * d) / det, yf = (b * d - a * e) / det;
+  if (xf >= x0 && xf <= x1 && yf >= y0 && yf <= y1) {
+    best = q(xf, yf);
+  } else {
+    auto on_x = [&](double x) {  // edge at fixed x: minimise over y
+      return q(x, std::clamp(-(b * x + e) / c, y0, y1));
+    };
+    auto on_y = [&](double y) {
+      return q(std::clamp(-(b * y + d) / a, x0, x1), y);
+    };
+    best = std::min({on_x(x0), on_x(x1), on_y(y0), on_y(y1)});
+  }
+  return best <= gate + 1e-9 * (1.0 + gate);
+}
+
+void SearchLattice::cells(const std::vector<Point2D>& pts, int t, int* cx, int* cy) const {
+  const double th = center.theta + t * step_theta;
+  const double cs = std::cos(th), sn = std::sin(th);
+  for (size_t k = 0; k < pts.size(); ++k) {
+    cx[k] = MatchField::floor_cell((center.x + cs * pts[k].x - sn * pts[k].y) / resolution);
+    cy[k] = MatchField::floor_cell((center.y + sn * pts[k].x + cs * pts[k].y) / resolution);
+  }
+}
+
+SearchLattice gate_lattice(const topology::PoseGaussian& prior, double gate, double step_xy,
+                           double step_theta, double resolution) {
+  SearchLattice l;
+  l.center = prior.mean;
+  l.resolution = resolution;
+  l.step_cells = std::max(1, static_cast<int>(std::lround(step_xy / resolution)));
+  l.step_theta = step_theta;
+  l.information = prior.cov.inverse();
+  l.gate = gate;
+  // The gate's bounding box: |e_k| <= sqrt(gate cov_kk) on each axis.
+  l.nx = static_cast<int>(std::sqrt(gate * prior.cov(0, 0)) / l.step_xy());
+  l.ny = static_cast<int>(std::sqrt(gate * prior.cov(1, 1)) / l.step_xy());
+  l.nt = static_cast<int>(std::min(M_PI, std::sqrt(gate * prior.cov(2, 2))) / step_theta);
+  return l;
+}
+
+namespace {
+
+// Whether lattice pose (i, j, t) is near mode m (ModeQuery's separation).
+bool near(const SearchLattice& l, const ModeQuery& q, const SearchMode& m, int i, int j, int t) {
+  return std::abs(i - m.i) * l.step_xy() < q.separation_xy &&
+         std::abs(j - m.j) * l.step_xy() < q.separation_xy &&
+         std::fabs(wrap_angle((t - m.t) * l.step_theta)) < q.separation_theta;
+}
+
+bool near_any(const SearchLattice& l, const ModeQuery& q, const std::vector<SearchMode>& modes,
+              int i, int j, int t) {
+  return std::any_of(modes.begin(), modes.end(),
+                     [&](const SearchMode& m) { return near(l, q, m, i, j, t); });
+}
+
+// A block of 2^level x 2^level translations from (i, j) at heading t, with
+// the lower bound of its poses' costs (level 0: one pose, its cost). Packed
+// in 16 bytes: a wide window's search holds up to millions of them.
+struct Block {
+  int32_t cost;
+  int32_t j, i;
+  int16_t t;
+  int8_t level;
+};
+
+// The order blocks are expanded in: cost first; at equal cost a block
+// before a pose (so that every pose of that cost is out before the first
+// is taken), then the lattice order among poses. A strict total order, so
+// the search does not depend on the heap's implementation.
+bool before(const Block& a, const Block& b) {
+  if (a.cost != b.cost) return a.cost < b.cost;
+  if ((a.level == 0) != (b.level == 0)) return a.level != 0;
+  if (a.level != b.level) return a.level > b.level;
+  if (a.t != b.t) return a.t < b.t;
+  if (a.j != b.j) return a.j < b.j;
+  return a.i < b.i;
+}
+
+}  // namespace
+
+std::vector<SearchMode> bnb_modes(const CostStack& stack, const SearchLattice& l,
+                                  const std::vector<Point2D>& pts, const ModeQuery& query,
+                                  SearchStats* stats) {
+  std::vector<SearchMode> modes;
+  if (pts.empty() || query.count <= 0) return modes;
+  if (pts.size() > 100000 || l.nt > 32767)
+    throw Error(ExitCode::kInternal, "bnb_modes: more points or headings than a block holds");
+  const size_t n = pts.size();
+  const int s = l.step_cells;
+  const int nth = 2 * l.nt + 1;
+  std::vector<int> cx(static_cast<size_t>(nth) * n), cy(cx.size());
+  for (int t = -l.nt; t <= l.nt; ++t) {
+    const size_t o = static_cast<size_t>(t + l.nt) * n;
+    l.cells(pts, t, cx.data() + o, cy.data() + o);
+  }
+  // The points' cells' bounding box at each heading: a block that puts
+  // every point outside the stack's raster costs the maximum for each, with
+  // no lookup (the window is often much larger than the area's map).
+  std::vector<std::array<int, 4>> box(static_cast<size_t>(nth));
+  for (size_t a = 0; a < box.size(); ++a) {
+    const size_t o = a * n;
+    box[a] = {cx[o], cy[o], cx[o], cy[o]};
+    for (size_t k = o; k < o + n; ++k) {
+      box[a][0] = std::min(box[a][0], cx[k]);
+      box[a][1] = std::min(box[a][1], cy[k]);
+      box[a][2] = std::max(box[a][2], cx[k]);
+      box[a][3] = std::max(box[a][3], cy[k]);
+    }
+  }
+  std::vector<std::array<int, 4>> raster(static_cast<size_t>(stack.levels()));
+  std::vector<char> has_raster(raster.size());
+  for (int k = 0; k < stack.levels(); ++k)
+    has_raster[static_cast<size_t>(k)] = stack.raster(k, &raster[static_cast<size_t>(k)][0],
+                                                      &raster[static_cast<size_t>(k)][1],
+                                                      &raster[static_cast<size_t>(k)][2],
+                                                      &raster[static_cast<size_t>(k)][3]);
+  const int64_t all_far = static_cast<int64_t>(n) * stack.max_cost();
+  SearchStats local;
+  SearchStats& st = stats ? *stats : local;
+  int64_t limit = query.max_cost;  // tightened once the best mode is out
+  // The bound of a block; stops at the limit (costs are never negative).
+  auto bound = [&](int level, int t, int i, int j) {
+    const std::array<int, 4>& b = box[static_cast<size_t>(t + l.nt)];
+    const std::array<int, 4>& r = raster[static_cast<size_t>(level)];
+    const int dx = i * s, dy = j * s;
+    if (!has_raster[static_cast<size_t>(level)] || b[2] + dx < r[0] || b[0] + dx > r[2] ||
+        b[3] + dy < r[1] || b[1] + dy > r[3])
+      return all_far;
+    ++st.blocks;
+    const size_t o = static_cast<size_t>(t + l.nt) * n;
+    int64_t sum = 0;
+    for (size_t k = 0; k < n; ++k) {
+      sum += stack.cost(level, cx[o + k] + dx, cy[o + k] + dy);
+      if (sum > limit) break;
+    }
+    return sum;
+  };
+  auto last = [](int first, int level, int end) { return std::min(first + (1 << level) - 1, end); };
+  std::vector<Block> heap;
+  auto cmp = [](const Block& a, const Block& b) { return before(b, a); };
+  // The heap never holds more blocks than were bounded: reserved once
+  // under a budget, it is never copied while it grows (the copy would
+  // double the search's peak memory).
+  if (query.max_blocks < (int64_t{1} << 22)) heap.reserve(static_cast<size_t>(query.max_blocks));
+  auto push = [&](int level, int t, int i, int j) {
+    if (st.blocks >= query.max_blocks) {
+      st.stopped = true;
+      return;
+    }
+    if (!l.block_meets_gate(i, last(i, level, l.nx), j, last(j, level, l.ny), t)) return;
+    if (level == 0 && !l.in_gate(i, j, t)) return;
+    const int64_t c = bound(level, t, i, j);
+    if (c > limit) return;
+    heap.push_back({static_cast<int32_t>(c), j, i, static_cast<int16_t>(t),
+                    static_cast<int8_t>(level)});
+    std::push_heap(heap.begin(), heap.end(), cmp);
+  };
+  // Roots: blocks as large as the stack allows, or as the window needs.
+  int top = 0;
+  while (top + 1 < stack.levels() && (1 << top) < 2 * std::max(l.nx, l.ny) + 1) ++top;
+  for (int t = -l.nt; t <= l.nt; ++t)
+    for (int j = -l.ny; j <= l.ny; j += 1 << top)
+      for (int i = -l.nx; i <= l.nx; i += 1 << top) push(top, t, i, j);
+  while (!heap.empty() && static_cast<int>(modes.size()) < query.count && !st.stopped) {
+    std::pop_heap(heap.begin(), heap.end(), cmp);
+    const Block b = heap.back();
+    heap.pop_back();
+    if (b.cost > limit) break;  // so is everything left
+    if (b.level == 0) {
+      ++st.poses;
+      if (!near_any(l, query, modes, b.i, b.j, b.t)) {
+        modes.push_back({b.cost, b.i, b.j, b.t, l.pose(b.i, b.j, b.t)});
+        if (modes.size() == 1 && query.margin < limit - b.cost) limit = b.cost + query.margin;
+      }
+      continue;
+    }
+    // A block wholly near one mode holds no other mode.
+    const int i1 = last(b.i, b.level, l.nx), j1 = last(b.j, b.level, l.ny);
+    const bool covered = std::any_of(modes.begin(), modes.end(), [&](const SearchMode& m) {
+      return near(l, query, m, b.i, b.j, b.t) && near(l, query, m, i1, j1, b.t) &&
+             near(l, query, m, b.i, j1, b.t) && near(l, query, m, i1, b.j, b.t);
+    });
+    if (covered) continue;
+    const int h = 1 << (b.level - 1);
+    for (int dj = 0; dj <= h; dj += h)
+      for (int di = 0; di <= h; di += h)
+        if (b.i + di <= l.nx && b.j + dj <= l.ny) push(b.level - 1, b.t, b.i + di, b.j + dj);
+  }
+  return modes;
+}
+
+std::vector<SearchMode> exhaustive_modes(const MatchField& field, int window,
+                                         const SearchLattice& l,
+                                         const std::vector<Point2D>& pts,
+                                         const ModeQuery& query) {
+  const size_t n = pts.size();
+  const int s = l.step_cells;
+  std::vector<SearchMode> all;
+  std::vector<int> cx(n), cy(n);
+  for (int t = -l.nt; t <= l.nt; ++t) {
+    l.cells(pts, t, cx.data(), cy.data());
+    for (int j = -l.ny; j <= l.ny; ++j)
+      for (int i = -l.nx; i <= l.nx; ++i) {
+        if (!l.in_gate(i, j, t)) continue;
+        int64_t cost = 0;
+        for (size_t k = 0; k < n; ++k)
+          cost += CostStack::point_cost(field.distance(cx[k] + i * s, cy[k] + j * s), window);
+        if (cost <= query.max_cost) all.push_back({cost, i, j, t, l.pose(i, j, t)});
+      }
+  }
+  std::stable_sort(all.begin(), all.end(),
+                   [](const SearchMode& a, const SearchMode& b) { return a.cost < b.cost; });
+  std::vector<SearchMode> modes;
+  for (const SearchMode& m : all) {
+    if (static_cast<int>(modes.size()) >= query.count) break;
+    if (!modes.empty() && m.cost - modes[0].cost > query.margin) break;
+    if (!near_any(l, query, modes, m.i, m.j, m.t)) modes.push_back(m);
+  }
+  return modes;
+}
+
+}  // namespace hmt::tsbi
