@@ -11,6 +11,7 @@ PACKAGES=(
   libcli11-dev nlohmann-json3-dev zlib1g-dev libpng-dev libnanoflann-dev
   librosbag-storage-dev libroscpp-core-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev
   python3 python3-matplotlib time
+  clang libclang-rt-14-dev  # libFuzzer and clang's sanitizer runtimes (scripts/fuzz.sh)
 )
 
 missing=()

@@ -120,6 +120,13 @@ bool Config::has(const std::string& section, const std::string& key) const {
   return s != entries_.end() && s->second.count(key) > 0;
 }
 
+std::vector<std::pair<std::string, std::string>> Config::keys() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& [section, keys] : entries_)
+    for (const auto& kv : keys) out.emplace_back(section, kv.first);
+  return out;
+}
+
 void Config::record(const std::string& section, const std::string& key,
                     const std::string& value) {
   effective_[section][key] = value;

@@ -10,6 +10,7 @@
 
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace hmt {
@@ -36,6 +37,9 @@ class Config {
                          const std::string& default_value);
 
   bool has(const std::string& section, const std::string& key) const;
+
+  // Every (section, key) given, by the text or by overrides, sorted.
+  std::vector<std::pair<std::string, std::string>> keys() const;
 
   // Throws ConfigError naming the first key present but never read.
   void check_all_used() const;
