@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -90,6 +91,11 @@ int convert(const std::string& input, const std::string& output,
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A file-size limit (ulimit -f, or a quota) would otherwise kill the
+  // process with SIGXFSZ in the middle of writing an output; ignored, the
+  // write fails (EFBIG) and ends in the OutputError naming the file, and the
+  // atomic writes leave no partial file.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"HMT-SLAM: hybrid metric-topological SLAM on 2D laser logs"};
   app.require_subcommand(1);
 

@@ -103,7 +103,9 @@ class CarmenParser {
       for (size_t i = 0; i < s.ranges.size(); ++i) {
         const float r = s.ranges[i];
         const bool dead = i < dead_beams.size() && dead_beams[i];
-        scan.valid[i] = (r > 0.0f && r < no_return.max_range && !dead) ? 1 : 0;
+        // Zero, and subnormal values (below 1.2e-38 m: a zero with rounding
+        // noise, not a distance a laser measures), are no readings.
+        scan.valid[i] = (std::isnormal(r) && r < no_return.max_range && !dead) ? 1 : 0;
       }
       scan.ranges = std::move(s.ranges);
       log.steps.push_back(std::move(step));

@@ -95,7 +95,8 @@ hmt::LaserScan to_laser_scan(const ScanRecord& in) {
       ok = false;
     }
     out.ranges[i] = r;
-    out.valid[i] = (ok && r > 0.0f && r < max_range) ? 1 : 0;
+    // isnormal: neither zero nor subnormal (below 1.2e-38 m, not a distance).
+    out.valid[i] = (ok && std::isnormal(r) && r < max_range) ? 1 : 0;
   }
   return out;
 }

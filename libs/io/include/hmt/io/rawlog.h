@@ -24,7 +24,8 @@ namespace hmt::io {
 // Conventions of the result (see sensor_data.h):
 //  - angle_increment >= 0 always: scans stored left-to-right, or taken by a
 //    sensor mounted upside down, are reversed so bearings increase;
-//  - a reading is valid iff MRPT flags it valid, it is > 0 and < maxRange;
+//  - a reading is valid iff MRPT flags it valid, it is > 0 and < maxRange,
+//    and not a subnormal float (< 1.2e-38 m: no distance a laser measures);
 //    +inf readings are no-returns (stored as maxRange), NaN is an error;
 //  - sensor_pose is the planar part (x, y, yaw) of the scan's sensorPose.
 //
