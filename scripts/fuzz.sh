@@ -8,7 +8,7 @@
 #
 # CI mode replays the corpus (fuzz/corpus/<target>/: real log slices, the
 # inputs of the bad-input tests, and every input that ever crashed a target)
-# and then mutates it for FUZZ_RUNS executions (default 20000), so a
+# and then mutates it for FUZZ_RUNS executions (default 5000), so a
 # regression in a reader fails CI. Long mode writes new interesting inputs to
 # build-fuzz/corpus/<target>/ (fuzz/corpus is read-only to it) and crashing
 # inputs to build-fuzz/findings/<target>/; each run's libFuzzer log is in
@@ -25,7 +25,7 @@ DIR=build-fuzz
 TARGETS=(fuzz_rawlog fuzz_carmen fuzz_poses fuzz_config fuzz_topology fuzz_session)
 
 case "$MODE" in
-  ci) RUNS=${FUZZ_RUNS:-20000} ;;
+  ci) RUNS=${FUZZ_RUNS:-5000} ;;
   long)
     SECONDS_EACH=${2:?usage: $0 long SECONDS [target...]}
     if [ $# -gt 2 ]; then TARGETS=("${@:3}"); fi ;;
@@ -48,8 +48,9 @@ echo "fuzz: built ${#TARGETS[@]} targets in $((SECONDS - t0))s"
 
 export ASAN_OPTIONS="halt_on_error=1 detect_leaks=1 allocator_may_return_null=0"
 export UBSAN_OPTIONS="halt_on_error=1 print_stacktrace=1"
-COMMON=(-rss_limit_mb=2048 -malloc_limit_mb=1024 -timeout=10 -max_len=65536 -jobs=1 -workers=1
-        -print_final_stats=1)
+# One fuzzing process, in this process: libFuzzer's -jobs/-workers would fork
+# a child that logs to ./fuzz-N.log instead.
+COMMON=(-rss_limit_mb=2048 -malloc_limit_mb=1024 -timeout=10 -max_len=65536 -print_final_stats=1)
 mkdir -p "$DIR/logs"
 summary=()
 for t in "${TARGETS[@]}"; do
