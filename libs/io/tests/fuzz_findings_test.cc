@@ -6,6 +6,7 @@
 
 #include "hmt/io/carmen.h"
 #include "hmt/io/log_reader.h"
+#include "hmt/io/rawlog.h"
 #include "io_test_util.h"
 
 namespace hmt::io {
@@ -38,6 +39,22 @@ TEST(FuzzFindings, CarmenRobotLaserAnglesBeyondOneTurn) {
   write_bytes(dir + "/res.log", "ROBOTLASER1 0 -1.5 3 4 20 0.01 0 3" + tail);
   expect_input_error([&] { read_carmen(dir + "/res.log"); },
                      {"line 1", "angular_resolution 4", "more than a full turn"});
+}
+
+// A NaN aperture (a malaga scan's, flipped in its float) made every bearing
+// NaN; an aperture of 7 rad is more than a turn; a NaN in the sensor pose's
+// matrix made the sensor pose NaN. Found by fuzz_rawlog's check of the log's
+// invariants on mutated seeds.
+TEST(FuzzFindings, RawlogScanGeometryMustBeFinite) {
+  const std::string nan_aperture = finding("rawlog-aperture-nan.rawlog");
+  expect_input_error([&] { read_rawlog(nan_aperture); },
+                     {nan_aperture, "scan 0 (entry 0) is unusable", "its aperture is nan rad"});
+  const std::string wide = finding("rawlog-aperture-beyond-a-turn.rawlog");
+  expect_input_error([&] { read_log(wide); },
+                     {wide, "scan 0 (entry 0) is unusable", "its aperture is 7.0", "not in [0, 2 pi]"});
+  const std::string pose = finding("rawlog-sensor-pose-nan.rawlog");
+  expect_input_error([&] { read_rawlog(pose); },
+                     {pose, "scan 0 (entry 0) is unusable", "its sensor pose is not finite"});
 }
 
 }  // namespace

@@ -23,9 +23,16 @@ constexpr int kCellsPerTile = grid::kTileSize * grid::kTileSize;
 // Deflate never expands data by more than this factor when inflating
 // (its maximum compression ratio is about 1032:1).
 constexpr uint64_t kMaxInflateRatio = 1040;
-// A map's tile table is dense over the bounding box of its tiles; refuse
-// boxes larger than this many tiles (at 5 cm cells, 6.5 km a side).
+// A map's tile table is dense over the bounding box of its tiles (16 bytes
+// a tile, allocated or not); refuse boxes larger than this many tiles (at
+// 5 cm cells, 6.5 km a side) ...
 constexpr int64_t kMaxTileBoxArea = int64_t{1} << 24;
+// ... or than a square of side (stored tiles + this many): a map's tiles are
+// joined by the rays that made them, so its box is at most n x n for n
+// tiles, plus gaps where the odometry jumped ([input] max_step_motion, 10 m:
+// 7 tiles at 5 cm cells). Without this bound, two tiles far apart -- a few
+// dozen bytes of deflated file -- would claim 256 MB each.
+constexpr int64_t kMaxTileGap = 128;
 // Tile coordinates whose cell indices fit comfortably in an int.
 constexpr int32_t kMaxTileCoord = 1 << 25;
 
@@ -366,7 +373,8 @@ std::shared_ptr<const grid::OccupancyGrid> read_grid(Reader& r, const std::strin
       y0 = std::min<int64_t>(y0, ty);
       y1 = std::max<int64_t>(y1, ty);
     }
-    if ((x1 - x0 + 1) * (y1 - y0 + 1) > kMaxTileBoxArea)
+    const int64_t side = static_cast<int64_t>(tiles) + kMaxTileGap;
+    if ((x1 - x0 + 1) * (y1 - y0 + 1) > std::min(kMaxTileBoxArea, side * side))
       r.fail(where + ": tiles spread over an implausibly large area");
     const char* planes = r.take(4 * kCellsPerTile, "tile cells");
     grid::Tile& tile = g->mutable_tile(tx, ty);

@@ -19,7 +19,9 @@ namespace hmt::io {
 // Reads a rawlog (gzip or plain). Throws hmt::InputError with a one-line
 // message naming the file (and the entry / scan index where it applies) when
 // the file is missing, empty, not a rawlog, truncated, holds no 2D scans,
-// holds scans but no odometry, or holds NaN / negative / zero-beam scans.
+// holds scans but no odometry, or holds NaN / negative / zero-beam scans,
+// scans whose aperture is not in [0, 2 pi] or whose sensor pose is not
+// finite.
 //
 // Conventions of the result (see sensor_data.h):
 //  - angle_increment >= 0 always: scans stored left-to-right, or taken by a
