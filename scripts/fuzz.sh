@@ -46,6 +46,15 @@ CC=clang CXX=clang++ cmake -S . -B "$DIR" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 cmake --build "$DIR" -j "${JOBS:-$(nproc)}" --target "${TARGETS[@]}"
 echo "fuzz: built ${#TARGETS[@]} targets in $((SECONDS - t0))s"
 
+# As in scripts/sanitize.sh: the sanitizer runtimes do not cope with the
+# address-space randomisation of kernels with vm.mmap_rnd_bits above 28.
+WRAP=()
+if [ "$(cat /proc/sys/vm/mmap_rnd_bits 2>/dev/null || echo 28)" -gt 28 ] &&
+   setarch "$(uname -m)" -R true 2>/dev/null; then
+  WRAP=(setarch "$(uname -m)" -R)
+  echo "fuzz: vm.mmap_rnd_bits > 28, running without address randomisation"
+fi
+
 export ASAN_OPTIONS="halt_on_error=1 detect_leaks=1 allocator_may_return_null=0"
 export UBSAN_OPTIONS="halt_on_error=1 print_stacktrace=1"
 # One fuzzing process, in this process: libFuzzer's -jobs/-workers would fork
@@ -72,7 +81,7 @@ for t in "${TARGETS[@]}"; do
   fi
   echo "fuzz: $t: ${run[*]}"
   s0=$SECONDS
-  if ! "${run[@]}" >"$log" 2>&1; then
+  if ! "${WRAP[@]}" "${run[@]}" >"$log" 2>&1; then
     tail -n 60 "$log" >&2
     echo "fuzz: $t FAILED (log: $log; the crashing input is in $DIR/findings/$t)" >&2
     exit 1
