@@ -490,8 +490,9 @@ TEST(TopologyFile, InconsistentContentIsAnInputError) {
 TEST(TopologyFile, TilesFarApartAreRefusedBeforeTheirTableIsAllocated) {
   // A map's tile table is dense over its tiles' bounding box: two tiles
   // 3000 tiles apart in both directions, a few dozen bytes once deflated,
-  // would claim 3001^2 table slots (144 MB). The box may exceed the tiles'
-  // own square by a gap of 128 tiles (odometry jumps), no more.
+  // would claim 3001^2 table slots (144 MB). The box may be the tiles' own
+  // square widened by a gap of 128 tiles (odometry jumps), or 4096 slots
+  // per tile (OnlyAllocatedTilesAreStoredAndDeflated), no more.
   auto one_map = [](int32_t tx, int32_t ty) {
     std::string s;
     put_u32(s, 1);            // one area
@@ -514,7 +515,7 @@ TEST(TopologyFile, TilesFarApartAreRefusedBeforeTheirTableIsAllocated) {
     return s;
   };
   EXPECT_NO_THROW(decode_topology(wrap(one_map(100, 0)), "near"));
-  // 2 tiles + 128: a box of up to 130 x 130 tiles.
+  // 2 tiles: a box of up to max(130 x 130, 2 x 4096) tiles.
   EXPECT_NO_THROW(decode_topology(wrap(one_map(129, -129)), "at the bound"));
   expect_input_error(wrap(one_map(130, 129)), "implausibly large area");
   expect_input_error(wrap(one_map(3000, -3000)), "implausibly large area");
