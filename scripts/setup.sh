@@ -14,6 +14,7 @@ PACKAGES=(
   # The report page's browser test (tests/browser): headless Chromium, a font
   # for its text, PIL to read its screenshot.
   chromium fonts-dejavu-core python3-pil
+  clang libclang-rt-14-dev  # libFuzzer and clang's sanitizer runtimes (scripts/fuzz.sh)
 )
 
 missing=()

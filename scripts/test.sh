@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Sets up, builds, and runs every unit and end-to-end test; then the sanitizer
 # gate (scripts/sanitize.sh: the end-to-end runs under ThreadSanitizer and
-# under Address+UndefinedBehaviorSanitizer). HMT_SKIP_SANITIZERS=1 skips it.
+# under Address+UndefinedBehaviorSanitizer; HMT_SKIP_SANITIZERS=1 skips it);
+# then every fuzz target briefly over its corpus (scripts/fuzz.sh;
+# HMT_SKIP_FUZZ=1 skips it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -11,4 +13,9 @@ if [ "${HMT_SKIP_SANITIZERS:-0}" = 1 ]; then
   echo "test: sanitizer builds skipped (HMT_SKIP_SANITIZERS=1)"
 else
   bash scripts/sanitize.sh all
+fi
+if [ "${HMT_SKIP_FUZZ:-0}" = 1 ]; then
+  echo "test: fuzz targets skipped (HMT_SKIP_FUZZ=1)"
+else
+  bash scripts/fuzz.sh
 fi

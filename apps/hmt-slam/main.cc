@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <new>
@@ -140,6 +141,11 @@ int dump_config(const std::vector<std::string>& configs, const std::vector<std::
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A file-size limit (ulimit -f, or a quota) would otherwise kill the
+  // process with SIGXFSZ in the middle of writing an output; ignored, the
+  // write fails (EFBIG) and ends in the OutputError naming the file, and the
+  // atomic writes leave no partial file.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"HMT-SLAM: hybrid metric-topological SLAM on 2D laser logs"};
   app.require_subcommand(1);
   app.set_version_flag("--version", hmt::version_string("hmt-slam"));

@@ -31,6 +31,20 @@ bool valid_name(const std::string& s) {
   return true;
 }
 
+// Why `value` cannot be written back into an INI file as it is (empty if it
+// can): the effective configuration a run writes must read back as the
+// values it ran with, and a comment marker (';' or '#' at the start of the
+// value or after a blank) or a line break would cut it short.
+std::string unwritable(const std::string& value) {
+  for (size_t i = 0; i < value.size(); ++i) {
+    const char c = value[i];
+    if (c == '\n') return "holds a line break";
+    if ((c == ';' || c == '#') && (i == 0 || value[i - 1] == ' ' || value[i - 1] == '\t'))
+      return std::string("holds '") + c + "' where it would start a comment";
+  }
+  return "";
+}
+
 std::string lower(std::string s) {
   for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;
@@ -75,6 +89,9 @@ Config Config::from_string(const std::string& text, const std::string& origin,
       throw ConfigError(where + ": malformed key '" + key + "'");
     if (section.empty())
       throw ConfigError(where + ": key '" + key + "' appears before any [section]");
+    if (const std::string why = unwritable(value); !why.empty())
+      throw ConfigError(where + ": [" + section + "] " + key + " = '" + value + "' " + why +
+                        " (a value cannot start with ';' or '#')");
     auto& sec = cfg.entries_[section];
     if (sec.count(key))
       throw ConfigError(where + ": duplicate key [" + section + "] " + key +
@@ -104,6 +121,9 @@ void Config::apply_override(const std::string& assignment, const std::string& di
   const std::string value = trim(assignment.substr(eq + 1));
   if (!valid_name(section) || !valid_name(key))
     throw ConfigError("--set '" + assignment + "': malformed section or key");
+  if (const std::string why = unwritable(value); !why.empty())
+    throw ConfigError("--set '" + assignment + "': the value " + why +
+                      " (an INI file, such as the effective configuration, could not hold it)");
   entries_[section][key] = Entry{value, "--set " + assignment, false, dir};
 }
 
@@ -139,6 +159,13 @@ std::map<std::string, std::map<std::string, std::string>> Config::values() const
   std::map<std::string, std::map<std::string, std::string>> out;
   for (const auto& [section, keys] : entries_)
     for (const auto& [key, e] : keys) out[section][key] = e.value;
+  return out;
+}
+
+std::vector<std::pair<std::string, std::string>> Config::keys() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& [section, keys] : entries_)
+    for (const auto& kv : keys) out.emplace_back(section, kv.first);
   return out;
 }
 

@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -17,6 +19,7 @@ void write_file_atomically(const std::string& path,
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw OutputError("cannot create output file '" + tmp + "'");
+    errno = 0;
     try {
       fill(out);
     } catch (...) {
@@ -26,9 +29,13 @@ void write_file_atomically(const std::string& path,
     }
     out.flush();
     if (!out) {
+      // The failed write's reason ("No space left on device", "File too
+      // large"), when the stream left one.
+      const int err = errno;
       out.close();
       std::remove(tmp.c_str());
-      throw OutputError("failed writing output file '" + path + "'");
+      throw OutputError("failed writing output file '" + path + "'" +
+                        (err ? std::string(": ") + std::strerror(err) : std::string()));
     }
   }
   std::error_code ec;

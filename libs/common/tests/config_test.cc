@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <string>
+
 #include "hmt/common/error.h"
 
 namespace hmt {
@@ -55,6 +58,40 @@ TEST(Config, OverrideWinsAndIsChecked) {
   EXPECT_DOUBLE_EQ(c.get_double("a", "x", 0), 2.0);
   EXPECT_THROW(c.check_all_used(), ConfigError);  // b.y never read
   EXPECT_THROW(c.apply_override("novalue"), ConfigError);
+}
+
+// The effective configuration a run writes (effective_ini) must read back
+// as the values it ran with: values an INI file cannot hold are refused
+// where they come in. Found by fuzz_config (testdata/fuzz/): "J =#..." made
+// [a] J the value "#...", written back as "J = #...", a comment.
+TEST(Config, ValuesAnIniFileCannotHoldAreRefused) {
+  auto message = [](const std::function<void()>& fn) {
+    try {
+      fn();
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no ConfigError");
+  };
+  const std::string found = std::string(HMT_SOURCE_DIR) +
+                            "/libs/common/tests/testdata/fuzz/config-value-starts-with-comment.ini";
+  const std::string m = message([&] { Config::from_file(found); });
+  EXPECT_NE(m.find(found + ":6: [a] J = '#"), std::string::npos) << m;
+  EXPECT_NE(m.find("holds '#' where it would start a comment"), std::string::npos) << m;
+  EXPECT_NE(message([] { Config::from_string("[a]\nx =;1\n", "t"); }).find("t:2: [a] x"),
+            std::string::npos);
+
+  Config c = Config::from_string("[a]\nx = 1 ; a comment\ny = a;b#c\n", "t");
+  EXPECT_EQ(c.get_string("a", "x", ""), "1");
+  EXPECT_EQ(c.get_string("a", "y", ""), "a;b#c");  // no blank before: not a comment
+  const std::string s = message([&] { c.apply_override("a.x=2 ;comment"); });
+  EXPECT_NE(s.find("--set 'a.x=2 ;comment': the value holds ';'"), std::string::npos) << s;
+  EXPECT_NE(message([&] { c.apply_override("a.x=2\n[b]"); }).find("line break"), std::string::npos);
+  EXPECT_NE(message([&] { c.apply_override("a.x=#2"); }).find("holds '#'"), std::string::npos);
+  c.apply_override("a.x=2;3");
+  EXPECT_EQ(c.get_string("a", "x", ""), "2;3");
+  Config back = Config::from_string(c.effective_ini(), "effective");
+  EXPECT_EQ(back.get_string("a", "x", ""), "2;3");
 }
 
 TEST(Config, MissingFileIsConfigError) {

@@ -236,7 +236,8 @@ class BagLog {
     out.valid.resize(n);
     for (size_t i = 0; i < n; ++i) {
       const float r = s.ranges[reverse ? n - 1 - i : i];
-      const bool ok = std::isfinite(r) && r > 0.0f && r >= s.range_min && r <= s.range_max;
+      // isnormal: finite, neither zero nor subnormal (not a distance).
+      const bool ok = std::isnormal(r) && r > 0.0f && r >= s.range_min && r <= s.range_max;
       out.valid[i] = ok ? 1 : 0;
       out.ranges[i] = std::isfinite(r) ? r : (r > 0.0f ? out.max_range : 0.0f);
     }

@@ -103,7 +103,9 @@ class CarmenParser {
       for (size_t i = 0; i < s.ranges.size(); ++i) {
         const float r = s.ranges[i];
         const bool dead = i < dead_beams.size() && dead_beams[i];
-        scan.valid[i] = (r > 0.0f && r < no_return.max_range && !dead) ? 1 : 0;
+        // Zero, and subnormal values (below 1.2e-38 m: a zero with rounding
+        // noise, not a distance a laser measures), are no readings.
+        scan.valid[i] = (std::isnormal(r) && r < no_return.max_range && !dead) ? 1 : 0;
       }
       scan.ranges = std::move(s.ranges);
       log.steps.push_back(std::move(step));
@@ -163,6 +165,10 @@ class CarmenParser {
              printable(f[first + i]) + "', not a number");
       if (!std::isfinite(r) || r < 0.0)
         fail("range " + std::to_string(i) + " is " + printable(f[first + i]));
+      // Ranges are held as floats: a larger value would become infinite.
+      if (r > std::numeric_limits<float>::max())
+        fail("range " + std::to_string(i) + " is " + printable(f[first + i]) +
+             ", beyond what a float holds");
       out[i] = static_cast<float>(r);
     }
   }
@@ -206,8 +212,16 @@ class CarmenParser {
            std::to_string(m) + " remissions needs " + std::to_string(want) +
            " fields, found " + std::to_string(f.size()));
     RawScan s;
-    s.angle_min = static_cast<float>(number(f, 2, "start_angle"));
-    s.angle_increment = static_cast<float>(number(f, 4, "angular_resolution"));
+    const double start = number(f, 2, "start_angle");
+    const double resolution = number(f, 4, "angular_resolution");
+    // Radians: the beams of a 2D scanner span at most one turn.
+    if (std::abs(start) > 2.0 * M_PI)
+      fail("start_angle " + printable(f[2]) + " is not an angle in [-2 pi, 2 pi]");
+    if (std::abs(resolution) * double(n - 1) > 2.0 * M_PI)
+      fail("angular_resolution " + printable(f[4]) + " makes " + std::to_string(n) +
+           " beams span more than a full turn");
+    s.angle_min = static_cast<float>(start);
+    s.angle_increment = static_cast<float>(resolution);
     read_ranges(f, 9, n, s.ranges);
     const size_t o = 10 + n + static_cast<size_t>(m);
     const Pose2D laser(number(f, o, "laser_x"), number(f, o + 1, "laser_y"),

@@ -60,6 +60,13 @@ hmt::LaserScan to_laser_scan(const ScanRecord& in) {
     throw std::invalid_argument("its maxRange is " +
                                 std::to_string(static_cast<double>(max_range)));
 
+  // The beams of a 2D scanner span at most one turn (a little slack for
+  // drivers that round 2 pi up).
+  if (!(in.aperture >= 0.0f && double(in.aperture) <= 2.0 * M_PI + 1e-3))
+    throw std::invalid_argument("its aperture is " +
+                                std::to_string(static_cast<double>(in.aperture)) +
+                                " rad, not in [0, 2 pi]");
+
   hmt::LaserScan out;
   out.timestamp = from_mrpt_ticks(in.timestamp);
   out.max_range = max_range;
@@ -71,6 +78,9 @@ hmt::LaserScan to_laser_scan(const ScanRecord& in) {
   const bool upside_down = rot[2][2] < 0.0;
   out.sensor_pose = Pose2D(in.sensor_pose.x, in.sensor_pose.y,
                            std::atan2(rot[1][0], rot[0][0]));
+  if (!std::isfinite(out.sensor_pose.x) || !std::isfinite(out.sensor_pose.y) ||
+      !std::isfinite(out.sensor_pose.theta) || !std::isfinite(rot[2][2]))
+    throw std::invalid_argument("its sensor pose is not finite");
 
   // MRPT: beam i of a right-to-left scan is at -aperture/2 + i*aperture/(N-1)
   // in the sensor frame, of a left-to-right one at +aperture/2 - i*... The
@@ -95,7 +105,8 @@ hmt::LaserScan to_laser_scan(const ScanRecord& in) {
       ok = false;
     }
     out.ranges[i] = r;
-    out.valid[i] = (ok && r > 0.0f && r < max_range) ? 1 : 0;
+    // isnormal: neither zero nor subnormal (below 1.2e-38 m, not a distance).
+    out.valid[i] = (ok && std::isnormal(r) && r < max_range) ? 1 : 0;
   }
   return out;
 }

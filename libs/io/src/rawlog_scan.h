@@ -22,7 +22,8 @@ int64_t mrpt_now_ticks();
 
 // Scan record -> LaserScan (see rawlog.h for the conventions). Throws
 // std::invalid_argument with the reason (beam index and value) for a scan
-// without beams, a NaN or negative reading, or an unusable maxRange.
+// without beams, a NaN or negative reading, an unusable maxRange, an
+// aperture outside [0, 2 pi] or a non-finite sensor pose.
 hmt::LaserScan to_laser_scan(const ScanRecord& in);
 
 // LaserScan -> scan record, keeping each beam's direction in the robot frame

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -57,8 +58,12 @@ std::vector<StampedPose> read_tum(const std::string& path) {
              std::string(f[i].substr(0, 24)) + "') is not a finite number");
     }
     double qx = v[4], qy = v[5], qz = v[6], qw = v[7];
+    // Scaled by its largest component first: squares of components near
+    // 1e308 would overflow to inf and normalise the rotation away.
+    const double big = std::max({std::abs(qx), std::abs(qy), std::abs(qz), std::abs(qw)});
+    if (big < 1e-9) fail("the quaternion is zero");
+    qx /= big, qy /= big, qz /= big, qw /= big;
     const double norm = std::sqrt(qx * qx + qy * qy + qz * qz + qw * qw);
-    if (norm < 1e-9) fail("the quaternion is zero");
     qx /= norm, qy /= norm, qz /= norm, qw /= norm;
     // Yaw of a general rotation (Z-Y-X convention); for a planar one
     // (qx = qy = 0) this is 2 atan2(qz, qw).

@@ -63,6 +63,19 @@ TEST(TumConversion, CommentsBlankLinesAndGeneralQuaternions) {
   EXPECT_DOUBLE_EQ(t[1].timestamp, 2.0);
 }
 
+TEST(TumConversion, QuaternionsOfExtremeMagnitude) {
+  // Squaring 1e308 overflows and 1e-300 underflows: the rotation must come
+  // out all the same (90 deg about z both times).
+  const std::string p = scratch_dir() + "/big.tum";
+  write_bytes(p, "1 0 0 0 0 0 1e308 1e308\n2 0 0 0 0 0 1e-300 1e-300\n");
+  expect_input_error([&] { read_tum(p); }, {p, "line 2", "quaternion is zero"});
+  write_bytes(p, "1 0 0 0 0 0 1e308 1e308\n2 0 0 0 0 0 -3e307 -3e307\n");
+  const auto t = read_tum(p);
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_NEAR(t[0].pose.theta, M_PI / 2, 1e-12);
+  EXPECT_NEAR(t[1].pose.theta, M_PI / 2, 1e-12);
+}
+
 TEST(TumConversion, MalformedLines) {
   const std::string p = scratch_dir() + "/bad.tum";
   const std::string good = "1.0 0 0 0 0 0 0 1\n";

@@ -1,6 +1,7 @@
 #include "hmt/pipeline/metric_job.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -20,8 +21,10 @@ void InputOptions::load(Config& cfg, const std::string& config_dir) {
   log = cfg.get_string("input", "log", log);
   first_step = cfg.get_int("input", "first_step", first_step);
   max_steps = cfg.get_int("input", "max_steps", max_steps);
+  max_step_motion = cfg.get_double("input", "max_step_motion", max_step_motion);
   require(first_step >= 0, "input", "first_step", ">= 0");
   require(max_steps >= 0, "input", "max_steps", ">= 0");
+  require(max_step_motion > 0.0, "input", "max_step_motion", "> 0");
   bag.load(cfg, "input");
   // Relative to the folder of the layer that set it (a --config file's, the
   // built-in defaults' config/), else to `config_dir`.
@@ -36,6 +39,17 @@ Log InputOptions::select(Log log) const {
   log.steps.erase(log.steps.begin(), log.steps.begin() + static_cast<std::ptrdiff_t>(first));
   if (max_steps > 0 && log.steps.size() > static_cast<size_t>(max_steps))
     log.steps.resize(static_cast<size_t>(max_steps));
+  for (size_t k = 0; k < log.steps.size(); ++k) {
+    const Pose2D& d = log.steps[k].odometry_increment;
+    const double motion = std::hypot(d.x, d.y);
+    if (log.steps[k].has_odometry && !(motion <= max_step_motion)) {
+      char m[96];
+      std::snprintf(m, sizeof m, "%.3g m in one step, more than [input] max_step_motion = %g m",
+                    motion, max_step_motion);
+      throw InputError("log '" + log.source + "' step " + std::to_string(first + k) +
+                       ": the odometry moves the robot " + m + " (broken odometry?)");
+    }
+  }
   return log;
 }
 

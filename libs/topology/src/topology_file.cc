@@ -23,9 +23,20 @@ constexpr int kCellsPerTile = grid::kTileSize * grid::kTileSize;
 // Deflate never expands data by more than this factor when inflating
 // (its maximum compression ratio is about 1032:1).
 constexpr uint64_t kMaxInflateRatio = 1040;
-// A map's tile table is dense over the bounding box of its tiles; refuse
-// boxes larger than this many tiles (at 5 cm cells, 6.5 km a side).
+// A map's tile table is dense over the bounding box of its tiles (16 bytes
+// a tile, allocated or not); refuse boxes larger than this many tiles (at
+// 5 cm cells, 6.5 km a side) ...
 constexpr int64_t kMaxTileBoxArea = int64_t{1} << 24;
+// ... and than what the stored tiles can account for: a square of side
+// (n + kMaxTileGap) for n tiles (a map's tiles are joined by the rays that
+// made them, so its box is at most n x n, plus gaps where the odometry
+// jumped: [input] max_step_motion, 10 m, is 7 tiles at 5 cm cells), or
+// kMaxSlotsPerTile table slots per stored tile (64 KB of table per 4 KB
+// tile: sparse maps stay loadable, and memory stays bounded by the data).
+// Without this, two tiles far apart -- a few dozen bytes of deflated file
+// -- would claim 256 MB each.
+constexpr int64_t kMaxTileGap = 128;
+constexpr int64_t kMaxSlotsPerTile = 4096;
 // Tile coordinates whose cell indices fit comfortably in an int.
 constexpr int32_t kMaxTileCoord = 1 << 25;
 
@@ -366,7 +377,9 @@ std::shared_ptr<const grid::OccupancyGrid> read_grid(Reader& r, const std::strin
       y0 = std::min<int64_t>(y0, ty);
       y1 = std::max<int64_t>(y1, ty);
     }
-    if ((x1 - x0 + 1) * (y1 - y0 + 1) > kMaxTileBoxArea)
+    const int64_t n = static_cast<int64_t>(tiles);
+    const int64_t accounted = std::max((n + kMaxTileGap) * (n + kMaxTileGap), n * kMaxSlotsPerTile);
+    if ((x1 - x0 + 1) * (y1 - y0 + 1) > std::min(kMaxTileBoxArea, accounted))
       r.fail(where + ": tiles spread over an implausibly large area");
     const char* planes = r.take(4 * kCellsPerTile, "tile cells");
     grid::Tile& tile = g->mutable_tile(tx, ty);

@@ -11,6 +11,7 @@
 #include <iterator>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "hmt/common/error.h"
 #include "hmt/common/random.h"
@@ -484,6 +485,40 @@ TEST(TopologyFile, InconsistentContentIsAnInputError) {
   s = head;
   put_u32(s, 0xffffffffu);
   expect_input_error(wrap(s), "exceeds the remaining data");
+}
+
+TEST(TopologyFile, TilesFarApartAreRefusedBeforeTheirTableIsAllocated) {
+  // A map's tile table is dense over its tiles' bounding box: two tiles
+  // 3000 tiles apart in both directions, a few dozen bytes once deflated,
+  // would claim 3001^2 table slots (144 MB). The box may be the tiles' own
+  // square widened by a gap of 128 tiles (odometry jumps), or 4096 slots
+  // per tile (OnlyAllocatedTilesAreStoredAndDeflated), no more.
+  auto one_map = [](int32_t tx, int32_t ty) {
+    std::string s;
+    put_u32(s, 1);            // one area
+    put_u32(s, 0);            // id
+    put_u32(s, 0xffffffffu);  // no parent
+    for (int i = 0; i < 3; ++i) put_f64(s, 0.0);
+    put_u64(s, 0);
+    put_f64(s, 0.0);
+    put_u32(s, 0);  // no keyframes
+    s.push_back(1);  // has a map
+    put_f64(s, 0.05);
+    put_u32(s, 2);
+    for (const auto& [x, y] : {std::pair<int32_t, int32_t>{0, 0}, {tx, ty}}) {
+      put_u32(s, static_cast<uint32_t>(x));
+      put_u32(s, static_cast<uint32_t>(y));
+      s.append(4 * 1024, '\0');
+    }
+    put_u32(s, 0);  // no arcs
+    put_u32(s, 0);  // no hypotheses
+    return s;
+  };
+  EXPECT_NO_THROW(decode_topology(wrap(one_map(100, 0)), "near"));
+  // 2 tiles: a box of up to max(130 x 130, 2 x 4096) tiles.
+  EXPECT_NO_THROW(decode_topology(wrap(one_map(129, -129)), "at the bound"));
+  expect_input_error(wrap(one_map(130, 129)), "implausibly large area");
+  expect_input_error(wrap(one_map(3000, -3000)), "implausibly large area");
 }
 
 TEST(TopologyFile, FailedSavesLeaveTheEarlierFileIntact) {

@@ -16,6 +16,7 @@
 
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace hmt {
@@ -58,6 +59,8 @@ class Config {
 
   // Every entry's value as given (not read or checked), by section and key.
   std::map<std::string, std::map<std::string, std::string>> values() const;
+  // Every (section, key) given, by the text or by overrides, sorted.
+  std::vector<std::pair<std::string, std::string>> keys() const;
 
   // Throws ConfigError naming the first key present but never read.
   void check_all_used() const;

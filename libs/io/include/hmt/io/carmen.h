@@ -21,7 +21,8 @@
 // if at least two readings lie within kCarmenNoReturnBand of M, every reading
 // >= M - kCarmenNoReturnBand is a no-return and max_range is that threshold;
 // otherwise (no such code, e.g. a short synthetic log) max_range is just
-// above M. Zero readings are invalid too. A beam that reads exactly the same
+// above M. Zero and subnormal (< 1.2e-38) readings are
+// invalid too. A beam that reads exactly the same
 // value in every one of at least kCarmenConstantBeamMinScans scans is not a
 // measurement (acapulco's beam 180 reads 50.00 in all 861 scans) and is
 // marked invalid. PARAM robot_front_laser_max is not used: it is wrong in

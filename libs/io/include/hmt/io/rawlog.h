@@ -19,12 +19,15 @@ namespace hmt::io {
 // Reads a rawlog (gzip or plain). Throws hmt::InputError with a one-line
 // message naming the file (and the entry / scan index where it applies) when
 // the file is missing, empty, not a rawlog, truncated, holds no 2D scans,
-// holds scans but no odometry, or holds NaN / negative / zero-beam scans.
+// holds scans but no odometry, or holds NaN / negative / zero-beam scans,
+// scans whose aperture is not in [0, 2 pi] or whose sensor pose is not
+// finite.
 //
 // Conventions of the result (see sensor_data.h):
 //  - angle_increment >= 0 always: scans stored left-to-right, or taken by a
 //    sensor mounted upside down, are reversed so bearings increase;
-//  - a reading is valid iff MRPT flags it valid, it is > 0 and < maxRange;
+//  - a reading is valid iff MRPT flags it valid, it is > 0 and < maxRange,
+//    and not a subnormal float (< 1.2e-38 m: no distance a laser measures);
 //    +inf readings are no-returns (stored as maxRange), NaN is an error;
 //  - sensor_pose is the planar part (x, y, yaw) of the scan's sensorPose.
 //

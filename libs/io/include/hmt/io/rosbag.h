@@ -29,7 +29,7 @@
 //    node waiting for its transforms would; a bag where that leaves no scan
 //    is an error saying why.
 //  - beams: bearings increase (a scan with angle_increment < 0 is reversed);
-//    a reading is valid iff it is finite, > 0 and within [range_min,
+//    a reading is valid iff it is finite, > 0 (and not subnormal) and within [range_min,
 //    range_max] (ROS's convention, REP 117). max_range is the smallest float
 //    above range_max, so "valid iff < max_range" means the same as ROS's
 //    "<= range_max". +inf readings are stored as max_range, NaN and -inf as

@@ -23,9 +23,15 @@ struct InputOptions {
   std::string log;     // path; relative paths are taken from the config file's folder
   int first_step = 0;  // steps of the log skipped before the first one used
   int max_steps = 0;   // 0 = the whole log
+  // The most the odometry may move the robot between two scans (m): the
+  // shipped logs' largest step is 1.7 m; a larger one is a broken odometry
+  // (a reset, a wrapped counter), which no motion model can absorb.
+  double max_step_motion = 10.0;
   io::BagOptions bag;  // which topics and frames of a ROS bag
   void load(Config& cfg, const std::string& config_dir);
-  // The steps this selects (first_step on, at most max_steps).
+  // The steps this selects (first_step on, at most max_steps). Throws
+  // InputError naming the step for odometry that moves more than
+  // max_step_motion in one step.
   Log select(Log log) const;
 };
 
