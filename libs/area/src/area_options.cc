@@ -55,6 +55,16 @@ void AreaOptions::load(Config& cfg, const std::string& s) {
   min_sso = cfg.get_double(s, "min_sso", min_sso);
   window_size = cfg.get_int(s, "window_size", window_size);
   index_cell_size = cfg.get_double(s, "index_cell_size", index_cell_size);
+  PlacementOptions& p = placement;
+  p.policy = parse_placement(cfg.get_string(s, "placement", to_string(p.policy)), s, "placement");
+  p.e_min = cfg.get_double(s, "placement_e_min", p.e_min);
+  p.threshold = cfg.get_double(s, "placement_threshold", p.threshold);
+  p.decay = cfg.get_double(s, "placement_decay", p.decay);
+  p.cutoff = cfg.get_double(s, "placement_cutoff", p.cutoff);
+  p.rate = cfg.get_double(s, "placement_rate", p.rate);
+  p.normal_radius = cfg.get_double(s, "placement_normal_radius", p.normal_radius);
+  p.reference_window = cfg.get_double(s, "placement_reference_window", p.reference_window);
+  p.max_range = cfg.get_double(s, "placement_max_range", p.max_range);
   validate(s);
 }
 
@@ -74,6 +84,16 @@ void AreaOptions::validate(const std::string& s) const {
   require(min_sso >= 0.0 && min_sso < 1.0, s, "min_sso", "in [0, 1)");
   require(window_size >= 2, s, "window_size", ">= 2");
   require(index_cell_size > 0.0, s, "index_cell_size", "> 0 (metres)");
+  const PlacementOptions& p = placement;
+  require(p.e_min > 0.0, s, "placement_e_min", "> 0 (metres)");
+  require(p.threshold > 0.0, s, "placement_threshold", "> 0");
+  require(p.decay >= 0.0, s, "placement_decay", ">= 0 (1/m)");
+  require(p.cutoff > 0.0, s, "placement_cutoff", "> 0");
+  require(p.rate > 0.0, s, "placement_rate", "> 0");
+  require(p.normal_radius > 0.0, s, "placement_normal_radius", "> 0 (metres)");
+  require(p.reference_window > 0.0 && p.reference_window < 180.0, s,
+          "placement_reference_window", "in (0, 180) degrees");
+  require(p.max_range > 0.0, s, "placement_max_range", "> 0 (metres)");
 }
 
 }  // namespace hmt::area

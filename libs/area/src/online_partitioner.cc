@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "hmt/area/placement.h"
 #include "hmt/area/spectral_bisection.h"
 
 namespace hmt::area {
@@ -16,6 +17,8 @@ int OnlinePartitioner::add_keyframe(const Keyframe& keyframe) {
     graph_.remove(window_.front());
     window_.erase(window_.begin());
   }
+  newest_uncertainty_ = keyframe.uncertainty;
+  newest_distinctiveness_ = keyframe.distinctiveness;
   graph_.add(id, keyframe);
   window_.push_back(id);
   area_.push_back(id);
@@ -28,23 +31,52 @@ AreaDecision OnlinePartitioner::update() {
   AreaDecision d;
   const int n = static_cast<int>(window_.size());
   if (n < 2) return d;
-  const WeightMatrix W = graph_.weight_matrix(window_);
+  const PlacementOptions& po = options_.placement;
+  // Eq. 3 of 003 at the newest keyframe, with the scan's R as the one model.
+  const auto criterion = [&] {
+    return placement_fires(newest_uncertainty_, {newest_distinctiveness_}, {po.threshold},
+                           po.e_min);
+  };
   const BisectionOptions bopt{options_.partition.split_method,
                               options_.partition.min_cluster_size};
-  const Bisection b = spectral_bisection(W, bopt);
+  const auto in = [](const std::vector<int>& v, int i) {
+    return std::binary_search(v.begin(), v.end(), i);
+  };
+  if (po.policy == Placement::kIslands) {
+    // The criterion alone decides when. Which keyframes form the new area
+    // is still the graph's answer: the side of the bisection holding the
+    // newest keyframe (whatever its Ncut), so that the new area starts with
+    // the observations of the place just reached, which TSBI compares with
+    // the known areas; the newest keyframe alone when that side also holds
+    // the oldest (or there is no valid bisection).
+    if (!criterion()) return d;
+    const Bisection b = spectral_bisection(graph_.weight_matrix(window_), bopt);
+    d.new_area = true;
+    if (b.valid) d.ncut = b.ncut;
+    std::vector<int> local{n - 1};
+    if (b.valid && !in(b.a, n - 1)) local = b.b;
+    for (int i : local) d.new_area_keyframes.push_back(window_[i]);
+    for (int id : area_)
+      if (!in(d.new_area_keyframes, id)) d.stay.push_back(id);
+    for (int i = 0; i < n; ++i)
+      if (!in(d.new_area_keyframes, window_[i])) graph_.remove(window_[i]);
+    window_ = d.new_area_keyframes;
+    area_ = d.new_area_keyframes;
+    return d;
+  }
+  const Bisection b = spectral_bisection(graph_.weight_matrix(window_), bopt);
   if (!b.valid) return d;
   d.ncut = b.ncut;
   if (!(b.ncut < options_.partition.tau)) return d;
 
   // Local index n-1 is the newest keyframe, 0 the oldest in the graph; `a`
   // always holds node 0, so the newest is in `b` unless both are in `a`.
-  const auto in = [](const std::vector<int>& v, int i) {
-    return std::binary_search(v.begin(), v.end(), i);
-  };
   if (in(b.a, n - 1)) return d;  // newest with the oldest: same area
   const size_t min_size =
       static_cast<size_t>(options_.partition.min_cluster_size);
   if (b.a.size() < min_size || b.b.size() < min_size) return d;
+  // Both: the cut proposes where, the criterion decides whether.
+  if (po.policy == Placement::kBoth && !criterion()) return d;
 
   d.new_area = true;
   for (int i : b.b) d.new_area_keyframes.push_back(window_[i]);

@@ -7,6 +7,7 @@
 #include "hmt/common/log_sum_exp.h"
 #include "hmt/common/random.h"
 #include "hmt/area/keyframe.h"
+#include "hmt/area/placement.h"
 #include "hmt/tsbi/observations.h"
 
 namespace hmt::hybrid {
@@ -113,7 +114,26 @@ std::optional<area::Keyframe> HybridFilter::keyframe_due(const LogStep& step) {
   ++stats_.keyframes;
   for (Hypothesis& hh : hyps_)
     hh.map.add_keyframe(hh.current_area(), {hh.filter.best().path.back(), step.scan});
-  return area::Keyframe{area::PoseGaussian(pose), step.scan};
+  area::Keyframe kf{area::PoseGaussian(pose), step.scan};
+  const area::PlacementOptions& po = opt_.area.placement;
+  if (po.policy != area::Placement::kSso) {
+    // epsilon of 003 Eq. 3: the robot's position error accumulated since
+    // the current area began, per axis. Two parts, combined in quadrature:
+    // the arc model's standard deviation (apply_event) over the distance
+    // travelled in the area -- the travelled distance, not the displacement,
+    // so that the error keeps growing when the robot turns back -- and the
+    // particles' spread.
+    const metric_slam::GridRbpf& f = h.filter;
+    const std::vector<Pose2D>& path = f.best().path;
+    const Pose2D now = path.back();
+    double len = 0.0;
+    for (size_t i = 1; i < path.size(); ++i) len += (path[i] - path[i - 1]).norm();
+    const double sxy = opt_.hybrid.arc_std_xy + opt_.hybrid.arc_std_xy_per_metre * len;
+    const Eigen::Matrix3d c = spread(current_poses(f), f.weights(), now);
+    kf.uncertainty = std::sqrt(sxy * sxy + 0.5 * std::max(0.0, c(0, 0) + c(1, 1)));
+    kf.distinctiveness = area::scan_distinctiveness(step.scan, po);
+  }
+  return kf;
 }
 
 std::vector<EventInput> HybridFilter::prepare_event(const area::AreaDecision& decision) const {

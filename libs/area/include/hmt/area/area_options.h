@@ -7,6 +7,8 @@
 
 #include <string>
 
+#include "hmt/area/placement.h"
+
 namespace hmt {
 class Config;
 }
@@ -75,6 +77,11 @@ struct AreaOptions {
   // to find the keyframes whose sensed regions can overlap (probabilistic
   // SSO; the fixed-delta SSO uses a finer point index, see sso_graph.h).
   double index_cell_size = 4.0;
+  // Which rule starts a new area (placement.h): keys placement,
+  // placement_e_min, placement_threshold, placement_decay, placement_cutoff,
+  // placement_rate, placement_normal_radius, placement_reference_window,
+  // placement_max_range.
+  PlacementOptions placement;
 
   // Reads every option from `section` (keys: delta, use_probabilistic, beta,
   // range_std, bearing_std, gate, descriptor_threshold, tau,

@@ -13,6 +13,11 @@ namespace hmt::area {
 struct Keyframe {
   PoseGaussian pose;  // robot pose in a common frame (area or global)
   LaserScan scan;
+  // For the placement criterion (placement.h, 003 Eq. 3), filled only when
+  // the policy uses it: the robot's accumulated position error since the
+  // current area's origin (epsilon, metres) and the scan's distinctiveness R.
+  double uncertainty = 0.0;
+  double distinctiveness = 0.0;
 };
 
 // A scan with fewer valid returns (is_valid_return) than this senses too

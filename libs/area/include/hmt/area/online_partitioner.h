@@ -32,6 +32,12 @@
 //    from the new area's keyframes, with their edges); the keyframes left
 //    behind are dropped from the graph.
 //
+// The placement policy (options.placement, placement.h) changes the rule:
+// `islands` replaces the cut's test by Eq. 3 of 003 at the newest keyframe
+// (N is then the bisection's side holding the newest keyframe, whatever its
+// Ncut, or the newest keyframe alone when that side holds the oldest), `both` accepts a cut as above only when Eq. 3 also
+// fires. Each keyframe carries its epsilon and R (keyframe.h).
+//
 // Recognising a known area (loop closure) is not decided here: a return to
 // an earlier area is reported as a new area, and the topological inference
 // (TSBI) decides whether it is one already known.
@@ -92,6 +98,8 @@ class OnlinePartitioner {
   std::vector<int> window_;  // graph members, ascending (a suffix of area_
                              // after the first new-area event, in general)
   int next_id_ = 0;
+  double newest_uncertainty_ = 0.0;      // epsilon of the newest keyframe
+  double newest_distinctiveness_ = 0.0;  // its R
 };
 
 }  // namespace hmt::area
