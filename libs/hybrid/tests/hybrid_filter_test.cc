@@ -21,6 +21,20 @@ topology::Session saved_after(const testing_sim::SimRun& run, size_t steps) {
   return s;
 }
 
+// A loop closure from the hypothesis's current area into another of its
+// areas, measured 1 m / -2 m / 0.5 rad off, five steps before `steps`.
+topology::ClosureRecord closure_from_current_area(const topology::SessionHypothesis& h,
+                                                  size_t steps) {
+  const std::vector<topology::AreaId> areas = h.map.area_ids();
+  topology::ClosureRecord c;
+  c.from = h.topo.current_area();
+  c.to = areas.front() == c.from ? areas.back() : areas.front();
+  c.step = steps - 5;
+  c.measurement = topology::PoseGaussian(Pose2D(1.0, -2.0, 0.5),
+                                         Eigen::Matrix3d::Identity() * 0.01);
+  return c;
+}
+
 TEST(HybridFilter, ClosesTheLoopByInference) {
   const auto run = testing_ring::ring_run(7);
   HybridFilter f(ring_options());
@@ -75,14 +89,8 @@ TEST(HybridFilter, ResumedRunStillAlignsTheClosuresMadeBeforeTheSave) {
   topology::Session s = saved_after(testing_ring::ring_run(7), 60);
   ASSERT_EQ(s.hypotheses.size(), 1u);
   topology::SessionHypothesis& h = s.hypotheses[0];
-  const std::vector<topology::AreaId> areas = h.map.area_ids();
-  ASSERT_GE(areas.size(), 2u);
-  topology::ClosureRecord c;
-  c.from = h.topo.current_area();
-  c.to = areas.front() == c.from ? areas.back() : areas.front();
-  c.step = s.steps - 5;
-  c.measurement = topology::PoseGaussian(Pose2D(1.0, -2.0, 0.5),
-                                         Eigen::Matrix3d::Identity() * 0.01);
+  ASSERT_GE(h.map.area_ids().size(), 2u);
+  topology::ClosureRecord c = closure_from_current_area(h, s.steps);
   h.pending_closures = {c};
   const topology::Session loaded =
       topology::decode_session(topology::encode_session(s), "saved.bin");
@@ -108,14 +116,8 @@ TEST(HybridFilter, TheOutputMapFusesTheClosuresTheLogEndedTooEarlyToAccept) {
   // would, and the filter's own state keeps it pending.
   topology::Session s = saved_after(testing_ring::ring_run(7), 60);
   topology::SessionHypothesis& h = s.hypotheses[0];
-  const std::vector<topology::AreaId> areas = h.map.area_ids();
-  ASSERT_GE(areas.size(), 2u);
-  topology::ClosureRecord c;
-  c.from = h.topo.current_area();
-  c.to = areas.front() == c.from ? areas.back() : areas.front();
-  c.step = s.steps - 5;
-  c.measurement = topology::PoseGaussian(Pose2D(1.0, -2.0, 0.5),
-                                         Eigen::Matrix3d::Identity() * 0.01);
+  ASSERT_GE(h.map.area_ids().size(), 2u);
+  topology::ClosureRecord c = closure_from_current_area(h, s.steps);
   if (const topology::Arc* before = h.map.find_arc(c.from, c.to)) c.arc_before = *before;
   h.pending_closures = {c};
   HybridFilter f(ring_options());
