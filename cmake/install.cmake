@@ -13,7 +13,7 @@ include(CMakePackageConfigHelpers)
 set(HMT_EXPORTED_LIBRARIES
   hmt_common hmt_sim hmt_area hmt_area_mrpt hmt_grid hmt_topology hmt_global_map
   hmt_io hmt_io_bag_writer hmt_rosbag_deps hmt_metric_slam hmt_alignment hmt_tsbi
-  hmt_tlca hmt_hybrid hmt_framework hmt_pipeline hmt_grouping hmt_experiments hmt_islands
+  hmt_tlca hmt_hybrid hmt_framework hmt_checkpoint hmt_pipeline hmt_grouping hmt_experiments hmt_islands
   hmt_version)
 
 install(TARGETS hmt-slam hmt-partition hmt-experiments log-to-bag

@@ -8,7 +8,7 @@ PACKAGES=(
   libmrpt-dev mrpt-apps mrpt-common
   libeigen3-dev libopencv-dev libsuitesparse-dev libspectra-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcli11-dev nlohmann-json3-dev zlib1g-dev libpng-dev libnanoflann-dev
+  libcli11-dev libcereal-dev nlohmann-json3-dev zlib1g-dev libpng-dev libnanoflann-dev
   librosbag-storage-dev libroscpp-core-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev
   python3 python3-matplotlib time
   # The report page's browser test (tests/browser): headless Chromium, a font

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "hmt/area/area_size.h"
+#include "hmt/checkpoint/checkpoint.h"
 #include "hmt/common/config.h"
 #include "hmt/common/error.h"
 #include "hmt/common/files.h"
@@ -21,6 +22,7 @@
 #include "hmt/pipeline/default_config.h"
 #include "hmt/pipeline/hmt_job.h"
 #include "hmt/pipeline/metric_job.h"
+#include "hmt/pipeline/stop_signal.h"
 #include "hmt/topology/topology_file.h"
 #include "hmt/version.h"
 
@@ -29,13 +31,26 @@ namespace {
 // `hybrid`: the HMT-SLAM job (run, or resume when `resume_map` names a saved
 // run's hmt_map.bin); otherwise the metric RBPF over the whole log as one map
 // (metric), the global-RBPF baseline.
+// With `checkpoint`: continue the interrupted run that wrote it, with its
+// configuration (configs and sets must be empty), its log unless `input`
+// names where the log is now, and its --report.
 int run(const std::vector<std::string>& configs, const std::string& input,
         const std::string& out_dir, const std::vector<std::string>& sets,
-        bool quiet, bool hybrid, bool report, const std::string& resume_map = "") {
+        bool quiet, bool hybrid, bool report, const std::string& resume_map = "",
+        const std::string& checkpoint = "") {
   // The built-in defaults (config/default.ini), each --config, then --set.
   hmt::Config cfg = hmt::pipeline::layered_config(configs, sets);
+  std::string log_path = input;
+  if (!checkpoint.empty()) {
+    const hmt::checkpoint::RunIdentity id = hmt::checkpoint::read_identity(checkpoint);
+    cfg = hmt::Config::from_string(id.config, checkpoint + " (the run's configuration)");
+    report = id.report;
+    std::fprintf(stderr, "hmt-slam: resuming after scan %llu from %s\n",
+                 static_cast<unsigned long long>(id.steps), checkpoint.c_str());
+    if (log_path.empty()) log_path = id.input;
+  }
   hmt::pipeline::JobOptions opt = hmt::pipeline::load_job_options(cfg, "");
-  if (!input.empty()) opt.input.log = input;
+  if (!log_path.empty()) opt.input.log = log_path;
   opt.output.report = report;
   if (opt.input.log.empty())
     throw hmt::UsageError("no input log: give --input or set [input] log");
@@ -51,7 +66,9 @@ int run(const std::vector<std::string>& configs, const std::string& input,
     std::fprintf(stderr, "hmt-slam: [area] tau = auto: %.3f from the laser's field of view\n",
                  opt.area.partition.tau);
   if (hybrid) {
-    const auto sum = hmt::pipeline::run_hmt_job(opt, log, cfg, out_dir, !quiet, session.get());
+    hmt::pipeline::install_stop_handlers();
+    const auto sum =
+        hmt::pipeline::run_hmt_job(opt, log, cfg, out_dir, !quiet, session.get(), checkpoint);
     std::printf("processed %zu scans in %.2f s (peak memory %.1f MB)\n", sum.scans,
                 sum.wall_time_s, sum.peak_rss_bytes / (1024.0 * 1024.0));
     std::printf("areas: %zu, arcs: %zu, loop closures accepted: %zu\n", sum.areas, sum.arcs,
@@ -159,11 +176,18 @@ int main(int argc, char** argv) {
       "run", "HMT-SLAM on a whole log: global map, topology, trajectory, PMF");
   auto* metric_cmd = app.add_subcommand(
       "metric", "the metric RBPF alone over the whole log as one map (baseline)");
-  std::string resume_map;
+  std::string resume_map, checkpoint;
   auto* resume_cmd = app.add_subcommand(
-      "resume", "continue a saved HMT-SLAM run (its hmt_map.bin) with more log");
-  resume_cmd->add_option("--map,-m", resume_map, "hmt_map.bin written by run or resume")
-      ->required();
+      "resume",
+      "continue an interrupted run from its checkpoint.bin, or a finished run (its "
+      "hmt_map.bin) with more log");
+  auto* map_opt =
+      resume_cmd->add_option("--map,-m", resume_map, "hmt_map.bin written by run or resume");
+  auto* ckpt_opt = resume_cmd->add_option(
+      "--checkpoint", checkpoint,
+      "checkpoint.bin of an interrupted run: continues it with its own configuration and log "
+      "(--input if the log has moved); --out defaults to the checkpoint's folder");
+  map_opt->excludes(ckpt_opt);
   for (CLI::App* cmd : {run_cmd, resume_cmd})
     cmd->add_flag("--report", report,
                   "also write OUT/report/index.html: a page to step through the run");
@@ -220,12 +244,26 @@ int main(int argc, char** argv) {
   try {
     if (*run_cmd) return run(configs, input, out, sets, quiet, true, report);
     if (*metric_cmd) return run(configs, input, out, sets, quiet, false, false);
+    if (*resume_cmd && !checkpoint.empty()) {
+      if (!configs.empty() || !sets.empty())
+        throw hmt::UsageError(
+            "resume --checkpoint continues with the run's own configuration: no --config or "
+            "--set");
+      const std::string dir = std::filesystem::path(checkpoint).parent_path().string();
+      return run({}, input, resume_cmd->count("--out") ? out : (dir.empty() ? "." : dir), {},
+                 quiet, true, report, "", checkpoint);
+    }
+    if (*resume_cmd && resume_map.empty())
+      throw hmt::UsageError("resume needs --checkpoint (an interrupted run) or --map (a finished one)");
     if (*resume_cmd) return run(configs, input, out, sets, quiet, true, report, resume_map);
     if (*conv_cmd) return convert(conv_in, conv_out, format, conv_sets);
     if (*config_cmd) return dump_config(configs, sets);
     if (*isl_cmd) return islands(isl_map, isl_configs, isl_out, isl_sets, isl_check);
   } catch (const hmt::Error& e) {
-    std::fprintf(stderr, "hmt-slam: error: %s\n", e.what());
+    // Stopped on request: not an error, though the exit code says the run
+    // did not end.
+    std::fprintf(stderr, "hmt-slam: %s%s\n", e.code() == hmt::ExitCode::kInterrupted ? "" : "error: ",
+                 e.what());
     return static_cast<int>(e.code());
   } catch (const std::bad_alloc&) {
     // Memory exhaustion is not a bug, but nothing else can be done with it

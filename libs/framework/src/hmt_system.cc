@@ -1,6 +1,8 @@
 #include "hmt/framework/hmt_system.h"
 
 #include <chrono>
+#include <future>
+#include <memory>
 #include <utility>
 
 #include "hmt/common/error.h"
@@ -98,6 +100,34 @@ void HmtSystem::finish() {
   rethrow_failure();
 }
 
+void HmtSystem::run_between_steps(const std::function<void()>& task) {
+  if (!started_ || finished_)
+    throw Error(ExitCode::kInternal, "HmtSystem::run_between_steps outside start()..finish()");
+  // The promise travels with the message: if the pipeline stops and drops
+  // it, the future reports a broken promise instead of waiting for ever.
+  auto done = std::make_shared<std::promise<void>>();
+  std::future<void> result = done->get_future();
+  StepMsg m;
+  m.task = [&task, done] {
+    try {
+      task();
+      done->set_value();
+    } catch (...) {
+      done->set_exception(std::current_exception());
+    }
+  };
+  if (!metric_.post(std::move(m))) {
+    rethrow_failure();
+    throw Error(ExitCode::kInternal, "the HMT-SLAM pipeline stopped unexpectedly");
+  }
+  try {
+    result.get();
+  } catch (const std::future_error&) {
+    rethrow_failure();
+    throw Error(ExitCode::kInternal, "the HMT-SLAM pipeline stopped unexpectedly");
+  }
+}
+
 void HmtSystem::fail() {
   decisions_.close();
   event_results_.close();
@@ -122,6 +152,10 @@ void HmtSystem::rethrow_failure() const {
 void HmtSystem::on_step(StepMsg& m) {
   if (m.drain) {
     drain();
+    return;
+  }
+  if (m.task) {
+    m.task();
     return;
   }
   const Clock::time_point t0 = Clock::now();

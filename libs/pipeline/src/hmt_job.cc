@@ -4,9 +4,11 @@
 #include <memory>
 #include <thread>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "hmt/checkpoint/checkpoint.h"
 #include "hmt/common/error.h"
 #include "hmt/common/files.h"
 #include "hmt/common/progress.h"
@@ -23,6 +25,7 @@
 #include "hmt/pipeline/hmt_outputs.h"
 #include "hmt/pipeline/report.h"
 #include "hmt/pipeline/rtl_probe.h"
+#include "hmt/pipeline/stop_signal.h"
 #include "hmt/topology/topology_file.h"
 #include "mrpt_map_outputs.h"
 
@@ -108,7 +111,8 @@ nlohmann::json run_summary(const framework::HmtSystem& system) {
 
 HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& cfg,
                           const std::string& out_dir, bool show_progress,
-                          const topology::Session* resume_from) {
+                          const topology::Session* resume_from,
+                          const std::string& checkpoint_path) {
   const auto t0 = std::chrono::steady_clock::now();
   if (opt.output.report && !opt.output.png)
     throw UsageError("--report draws over map.png, which [output] png = false turns off");
@@ -127,6 +131,34 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   framework::HmtSystem& system = *owned;
   const uint64_t first_step = resume_from ? resume_from->steps : 0;
   if (resume_from) system.resume(*resume_from);
+  // An interrupted run: its state, and the log it was given checked step by
+  // step against the fingerprint of the part it processed.
+  size_t start = 0;
+  uint32_t log_crc = 0;
+  if (!checkpoint_path.empty()) {
+    const checkpoint::RunIdentity id = checkpoint::read_identity(checkpoint_path);
+    if (id.steps >= n)
+      throw InputError("checkpoint '" + checkpoint_path + "' holds " + std::to_string(id.steps) +
+                       " scans, but the log '" + log.source + "' has only " + std::to_string(n) +
+                       ": not the log it was written from");
+    for (size_t i = 0; i < id.steps; ++i) log_crc = checkpoint::log_fingerprint(log_crc, log.steps[i]);
+    if (log_crc != id.log_crc)
+      throw InputError("the log '" + log.source + "' does not begin with the " +
+                       std::to_string(id.steps) + " scans checkpoint '" + checkpoint_path +
+                       "' processed: not the log it was written from");
+    checkpoint::load(checkpoint_path, system);
+    start = static_cast<size_t>(id.steps);
+  }
+  const std::string checkpoint_out = out_dir + "/checkpoint.bin";
+  const auto save_checkpoint = [&](size_t steps) {
+    checkpoint::RunIdentity id;
+    id.config = cfg.effective_ini();
+    id.input = opt.input.log;
+    id.steps = steps;
+    id.log_crc = log_crc;
+    id.report = opt.output.report;
+    system.run_between_steps([&] { checkpoint::save(checkpoint_out, id, system); });
+  };
   Progress progress("scans", n);
   progress.set_enabled(show_progress);
   system.start();
@@ -136,7 +168,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   const bool paced = opt.framework.mode == framework::Mode::kLive && opt.framework.live_speed > 0;
   const auto replay_start = std::chrono::steady_clock::now();
   char extra[128];
-  for (size_t i = 0; i < n; ++i) {
+  for (size_t i = start; i < n; ++i) {
     if (paced)
       std::this_thread::sleep_until(
           replay_start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -149,6 +181,22 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
     std::snprintf(extra, sizeof extra, "areas %zu  hypotheses %zu  closures %zu  ESS %.0f",
                   topo.best_areas, topo.hypotheses.size(), topo.closures_accepted, e.ess);
     progress.update(e.valid && e.step >= first_step ? e.step + 1 - first_step : 0, extra);
+    log_crc = checkpoint::log_fingerprint(log_crc, log.steps[i]);
+    const int sig = stop_signal();
+    const bool live = opt.framework.mode == framework::Mode::kLive;
+    if (sig != 0) {
+      progress.finish();
+      std::string where = "no checkpoint: a live run cannot be resumed";
+      if (!live) {
+        save_checkpoint(i + 1);
+        where = "checkpoint written to " + checkpoint_out + "; continue with: hmt-slam resume "
+                "--checkpoint " + checkpoint_out;
+      }
+      throw InterruptedError(std::string("stopped by ") + signal_name(sig) + " after scan " +
+                             std::to_string(i + 1) + " of " + std::to_string(n) + "; " + where);
+    }
+    if (opt.output.checkpoint_every > 0 && (i + 1) % opt.output.checkpoint_every == 0 && i + 1 < n)
+      save_checkpoint(i + 1);
   }
   system.finish();
   if (probe) probe->stop();
@@ -319,6 +367,9 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   j["global_map"] = {{"method", placed ? "keyframes" : "areas"}};
   if (placed) j["global_map"]["keyframe_graph"] = graph_json;
   write_text_atomically(out_dir + "/summary.json", j.dump(2) + "\n");
+  // Every output is in place: the run needs no resuming.
+  std::error_code ec;
+  std::filesystem::remove(checkpoint_out, ec);
   if (report_writer) {
     report_writer->add_map(frame, traj, first_step, segments, map, poses);
     sum.report_html = report_writer->write(j.dump());

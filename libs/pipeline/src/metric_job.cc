@@ -58,6 +58,8 @@ void OutputOptions::load(Config& cfg) {
   pgm = cfg.get_bool("output", "pgm", pgm);
   map_margin = cfg.get_int("output", "map_margin", map_margin);
   mrpt_maps = cfg.get_bool("output", "mrpt_maps", mrpt_maps);
+  checkpoint_every = cfg.get_int("output", "checkpoint_every", checkpoint_every);
+  require(checkpoint_every >= 0, "output", "checkpoint_every", ">= 0");
   require(map_margin >= 0 && map_margin <= 1000, "output", "map_margin", "in [0, 1000]");
 }
 
@@ -78,6 +80,11 @@ JobOptions load_job_options(Config& cfg, const std::string& config_dir) {
   // The graph's keyframes are the area abstraction's.
   o.global_map.graph.keyframe_distance = o.hybrid.keyframe_distance;
   o.global_map.graph.keyframe_angle = o.hybrid.keyframe_angle;
+  // A live run's processes are never all idle between two scans, and its
+  // results depend on timing: there is no state to save that resumes it.
+  if (o.output.checkpoint_every > 0 && o.framework.mode == framework::Mode::kLive)
+    throw ConfigError("[output] checkpoint_every = " + std::to_string(o.output.checkpoint_every) +
+                      " needs [framework] mode = deterministic (a live run cannot be resumed)");
   cfg.check_all_used();
   return o;
 }

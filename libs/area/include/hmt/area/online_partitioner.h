@@ -58,6 +58,10 @@
 #include "hmt/area/keyframe.h"
 #include "hmt/area/sso_graph.h"
 
+namespace hmt::checkpoint {
+struct Access;  // hmt/checkpoint/checkpoint.h
+}  // namespace hmt::checkpoint
+
 namespace hmt::area {
 
 struct AreaDecision {
@@ -72,6 +76,9 @@ struct AreaDecision {
 };
 
 class OnlinePartitioner {
+  // Checkpoints save and restore every member, bit for bit.
+  friend struct hmt::checkpoint::Access;
+
  public:
   explicit OnlinePartitioner(const AreaOptions& options);
 

@@ -17,9 +17,16 @@
 
 #include "hmt/common/pose2d.h"
 
+namespace hmt::checkpoint {
+struct Access;  // hmt/checkpoint/checkpoint.h
+}  // namespace hmt::checkpoint
+
 namespace hmt::area {
 
 class PointGrid {
+  // Checkpoints save and restore every member, bit for bit.
+  friend struct hmt::checkpoint::Access;
+
  public:
   PointGrid() = default;
   // `cell` > 0. The grid keeps a copy of the points (reordered by cell) and

@@ -24,6 +24,10 @@
 #include "hmt/area/pose_gaussian.h"
 #include "hmt/common/sensor_data.h"
 
+namespace hmt::checkpoint {
+struct Access;  // hmt/checkpoint/checkpoint.h
+}  // namespace hmt::checkpoint
+
 namespace hmt::area {
 
 // A scan's valid returns as points in the robot frame, with what the SSO
@@ -31,6 +35,9 @@ namespace hmt::area {
 // PointGrid (cells of 2 delta). Build once per keyframe and reuse for every
 // pair the keyframe takes part in.
 class PreparedScan {
+  // Checkpoints save and restore every member, bit for bit.
+  friend struct hmt::checkpoint::Access;
+
  public:
   PreparedScan() = default;
   PreparedScan(const LaserScan& scan, const SsoOptions& options);

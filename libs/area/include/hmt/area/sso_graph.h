@@ -40,9 +40,16 @@
 #include "hmt/area/ncut.h"
 #include "hmt/area/scan_sso.h"
 
+namespace hmt::checkpoint {
+struct Access;  // hmt/checkpoint/checkpoint.h
+}  // namespace hmt::checkpoint
+
 namespace hmt::area {
 
 class SsoGraph {
+  // Checkpoints save and restore every member, bit for bit.
+  friend struct hmt::checkpoint::Access;
+
  public:
   explicit SsoGraph(const AreaOptions& options);
 

@@ -14,6 +14,9 @@ enum class ExitCode : int {
   kConfig = 3,    // malformed, unknown or out-of-range configuration
   kInput = 4,     // missing, truncated or malformed input log / file
   kOutput = 5,    // an output could not be written
+  // Stopped by SIGINT or SIGTERM between two scans (128 + SIGINT, as shells
+  // report an interrupted command); a checkpoint says where to go on from.
+  kInterrupted = 130,
 };
 
 class Error : public std::runtime_error {
@@ -34,6 +37,9 @@ struct InputError : Error {
 };
 struct OutputError : Error {
   explicit OutputError(const std::string& m) : Error(ExitCode::kOutput, m) {}
+};
+struct InterruptedError : Error {
+  explicit InterruptedError(const std::string& m) : Error(ExitCode::kInterrupted, m) {}
 };
 struct UsageError : Error {
   explicit UsageError(const std::string& m) : Error(ExitCode::kUsage, m) {}

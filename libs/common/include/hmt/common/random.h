@@ -7,9 +7,16 @@
 #include <cstdint>
 #include <random>
 
+namespace hmt::checkpoint {
+struct Access;  // hmt/checkpoint/checkpoint.h
+}  // namespace hmt::checkpoint
+
 namespace hmt {
 
 class Random {
+  // Checkpoints save and restore every member, bit for bit.
+  friend struct hmt::checkpoint::Access;
+
  public:
   explicit Random(uint64_t seed = 1) : engine_(seed) {}
 

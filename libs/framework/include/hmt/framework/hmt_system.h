@@ -39,6 +39,10 @@
 #include "hmt/framework/rtl.h"
 #include "hmt/hybrid/hybrid_filter.h"
 
+namespace hmt::checkpoint {
+struct Access;  // hmt/checkpoint/checkpoint.h
+}  // namespace hmt::checkpoint
+
 namespace hmt::framework {
 
 // What metric SLAM records after each step, for the outputs.
@@ -68,6 +72,9 @@ struct ProcessTimes {
 };
 
 class HmtSystem {
+  // Checkpoints save and restore every member, bit for bit.
+  friend struct hmt::checkpoint::Access;
+
  public:
   HmtSystem(const hybrid::HmtOptions& options, const FrameworkOptions& framework,
             size_t memory_every = 50);
@@ -86,6 +93,12 @@ class HmtSystem {
   // No more steps: waits for every process to finish its work, applies the
   // outstanding results, joins the threads. Rethrows a process's failure.
   void finish();
+  // Runs `task` on the metric SLAM thread once every step fed so far has
+  // been processed, and waits for it; rethrows its error (or the pipeline's,
+  // if it stopped first). In deterministic mode the other processes are then
+  // idle, every answer applied: the one consistent state a checkpoint can
+  // save (hmt/checkpoint/checkpoint.h). Between start() and finish().
+  void run_between_steps(const std::function<void()>& task);
 
   // RTL: the robot's pose now; answered by the RTL thread at any time after
   // start(), whatever metric SLAM is doing.
@@ -112,6 +125,7 @@ class HmtSystem {
  private:
   struct StepMsg {
     bool drain = false;
+    std::function<void()> task;  // run_between_steps(): no step
     uint64_t index = 0;
     LogStep step;
   };

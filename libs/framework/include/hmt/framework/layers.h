@@ -18,6 +18,10 @@
 #include "hmt/common/pose2d.h"
 #include "hmt/topology/hmt_map.h"
 
+namespace hmt::checkpoint {
+struct Access;  // hmt/checkpoint/checkpoint.h
+}  // namespace hmt::checkpoint
+
 namespace hmt::framework {
 
 // Local metric layer: the latest estimate of metric SLAM.
@@ -63,6 +67,9 @@ struct AreaSummary {
 
 // Written by the area abstraction process only.
 class AreaLayer {
+  // Checkpoints save and restore every member, bit for bit.
+  friend struct hmt::checkpoint::Access;
+
  public:
   void record_keyframe(uint64_t step, bool new_area);
   AreaSummary summary() const;

@@ -30,6 +30,10 @@
 
 #include "hmt/common/pose2d.h"
 
+namespace hmt::checkpoint {
+struct Access;  // hmt/checkpoint/checkpoint.h
+}  // namespace hmt::checkpoint
+
 namespace hmt::grid {
 
 constexpr int kTileBits = 5;
@@ -96,6 +100,9 @@ struct CellIndex {
 };
 
 class OccupancyGrid {
+  // Checkpoints save and restore every member, bit for bit.
+  friend struct hmt::checkpoint::Access;
+
  public:
   explicit OccupancyGrid(double resolution = 0.05);
 

@@ -51,6 +51,10 @@
 #include "hmt/topology/topology_file.h"
 #include "hmt/tsbi/transition_model.h"
 
+namespace hmt::checkpoint {
+struct Access;  // hmt/checkpoint/checkpoint.h
+}  // namespace hmt::checkpoint
+
 namespace hmt::hybrid {
 
 constexpr uint32_t kNoChild = 0xffffffffu;
@@ -123,6 +127,9 @@ struct HybridStats {
 };
 
 class HybridFilter {
+  // Checkpoints save and restore every member, bit for bit.
+  friend struct hmt::checkpoint::Access;
+
  public:
   explicit HybridFilter(const HmtOptions& options);
 

@@ -26,6 +26,10 @@
 #include "hmt/metric_slam/scan_matcher.h"
 #include "hmt/metric_slam/worker_pool.h"
 
+namespace hmt::checkpoint {
+struct Access;  // hmt/checkpoint/checkpoint.h
+}  // namespace hmt::checkpoint
+
 namespace hmt::metric_slam {
 
 struct Particle {
@@ -60,6 +64,9 @@ struct SeedScan {
 // that shares the worker pool. Filters sharing a pool must not process()
 // at the same time (the hybrid filter runs its hypotheses one after another).
 class GridRbpf {
+  // Checkpoints save and restore every member, bit for bit.
+  friend struct hmt::checkpoint::Access;
+
  public:
   explicit GridRbpf(const RbpfOptions& opt);
   GridRbpf(const RbpfOptions& opt, std::shared_ptr<WorkerPool> pool);

@@ -40,8 +40,17 @@ struct HmtJobSummary {
 
 // With `resume_from`, continues that saved run with `log` as the log that
 // follows it (steps numbered on; outputs cover the new steps).
+// With `checkpoint`, continues the interrupted run that wrote it
+// (hmt/checkpoint/checkpoint.h): `log` is that run's whole log, `opt` and
+// `cfg` its configuration; the outputs are those of the whole run. Throws
+// InputError if the log does not begin with the steps the checkpoint holds.
+//
+// OUT/checkpoint.bin is written every [output] checkpoint_every scans and
+// when SIGINT / SIGTERM arrives (stop_signal.h; the job then throws
+// InterruptedError), and removed once the run's outputs are written.
 HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& cfg,
                           const std::string& out_dir, bool show_progress,
-                          const topology::Session* resume_from = nullptr);
+                          const topology::Session* resume_from = nullptr,
+                          const std::string& checkpoint = "");
 
 }  // namespace hmt::pipeline

@@ -44,6 +44,9 @@ struct OutputOptions {
   // map.gridmap.gz and keyframes.simplemap for MRPT's tools (hmt run only;
   // src/mrpt_map_outputs.h)
   bool mrpt_maps = false;
+  // hmt-slam run: write OUT/checkpoint.bin every this many scans (0: only
+  // on SIGINT / SIGTERM); deterministic mode only (hmt/checkpoint).
+  int checkpoint_every = 0;
   void load(Config& cfg);
 };
 

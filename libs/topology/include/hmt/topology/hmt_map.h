@@ -57,6 +57,10 @@
 #include "hmt/grid/occupancy_grid.h"
 #include "hmt/topology/pose_gaussian.h"
 
+namespace hmt::checkpoint {
+struct Access;  // hmt/checkpoint/checkpoint.h
+}  // namespace hmt::checkpoint
+
 namespace hmt::topology {
 
 using AreaId = uint32_t;
@@ -102,6 +106,9 @@ struct Arc {
 };
 
 class HmtMap {
+  // Checkpoints save and restore every member, bit for bit.
+  friend struct hmt::checkpoint::Access;
+
  public:
   // --- Areas ---
   // Adds an empty area. Throws std::invalid_argument if `id` exists, is
