@@ -34,6 +34,7 @@ REQUIRED_TESTS=(
 )
 OPTIONAL_TESTS=(
   'hmt_framework\..*'  # the pipeline's threading framework (libs/framework), once it exists
+  'hmt_checkpoint\..*'  # checkpoints taken on the metric SLAM thread while the feeder waits
 )
 ADDRESS_TESTS=(
   'e2e\..*'  # every end-to-end test but the ones below
@@ -46,7 +47,7 @@ ADDRESS_EXCLUDE=(
 # binaries named below when they exist (matched against the build tree's
 # target list, so new e2e binaries are picked up by name).
 REQUIRED_TARGETS=(hmt-slam hmt_e2e_tests hmt_metric_slam_tests)
-TARGET_PATTERN='^(hmt_e2e.*_tests|hmt_framework_tests)$'
+TARGET_PATTERN='^(hmt_e2e.*_tests|hmt_framework_tests|hmt_checkpoint_tests)$'
 
 SUPP_DIR=$ROOT/scripts/sanitizers
 export TSAN_OPTIONS="halt_on_error=1 exitcode=66 second_deadlock_stack=1 suppressions=$SUPP_DIR/tsan.supp"

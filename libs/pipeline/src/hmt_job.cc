@@ -117,6 +117,8 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   if (opt.output.report && !opt.output.png)
     throw UsageError("--report draws over map.png, which [output] png = false turns off");
   make_directories(out_dir);
+  // A run killed while writing leaves a temporary beside the output.
+  remove_stale_temporaries(out_dir);
   // The configuration first: a run that fails later still says what it used.
   write_text_atomically(out_dir + "/config_effective.ini", cfg.effective_ini());
 

@@ -15,6 +15,11 @@ void write_file_atomically(const std::string& path,
                            const std::function<void(std::ostream&)>& fill);
 void write_text_atomically(const std::string& path, const std::string& text);
 
+// Removes the temporaries write_file_atomically left in `dir` when its
+// process was killed mid-write (NAME.tmp.PID of a process that no longer
+// runs); the outputs themselves are whole, old or new. Silent on failure.
+void remove_stale_temporaries(const std::string& dir);
+
 // Creates the directory (and parents) or throws OutputError.
 void make_directories(const std::string& path);
 
