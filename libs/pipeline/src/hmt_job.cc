@@ -161,6 +161,13 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
     id.report = opt.output.report;
     system.run_between_steps([&] { checkpoint::save(checkpoint_out, id, system); });
   };
+  // A live run's processes are never all idle between two scans and its
+  // results depend on timing: there is no state that would resume it.
+  const bool periodic = opt.output.checkpoint_every > 0 && opt.framework.mode != framework::Mode::kLive;
+  if (opt.output.checkpoint_every > 0 && !periodic)
+    std::fprintf(stderr, "hmt-slam: [framework] mode = live: no checkpoints ([output] "
+                 "checkpoint_every = %d ignored; a live run cannot be resumed)\n",
+                 opt.output.checkpoint_every);
   Progress progress("scans", n);
   progress.set_enabled(show_progress);
   system.start();
@@ -197,8 +204,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
       throw InterruptedError(std::string("stopped by ") + signal_name(sig) + " after scan " +
                              std::to_string(i + 1) + " of " + std::to_string(n) + "; " + where);
     }
-    if (opt.output.checkpoint_every > 0 && (i + 1) % opt.output.checkpoint_every == 0 && i + 1 < n)
-      save_checkpoint(i + 1);
+    if (periodic && (i + 1) % opt.output.checkpoint_every == 0 && i + 1 < n) save_checkpoint(i + 1);
   }
   system.finish();
   if (probe) probe->stop();

@@ -80,11 +80,6 @@ JobOptions load_job_options(Config& cfg, const std::string& config_dir) {
   // The graph's keyframes are the area abstraction's.
   o.global_map.graph.keyframe_distance = o.hybrid.keyframe_distance;
   o.global_map.graph.keyframe_angle = o.hybrid.keyframe_angle;
-  // A live run's processes are never all idle between two scans, and its
-  // results depend on timing: there is no state to save that resumes it.
-  if (o.output.checkpoint_every > 0 && o.framework.mode == framework::Mode::kLive)
-    throw ConfigError("[output] checkpoint_every = " + std::to_string(o.output.checkpoint_every) +
-                      " needs [framework] mode = deterministic (a live run cannot be resumed)");
   cfg.check_all_used();
   return o;
 }

@@ -46,7 +46,7 @@ struct OutputOptions {
   bool mrpt_maps = false;
   // hmt-slam run: write OUT/checkpoint.bin every this many scans (0: only
   // on SIGINT / SIGTERM); deterministic mode only (hmt/checkpoint).
-  int checkpoint_every = 0;
+  int checkpoint_every = 500;
   void load(Config& cfg);
 };
 
