@@ -380,19 +380,37 @@ std::vector<std::shared_ptr<const MatchField>> TransitionModel::fields_for(
   // A map only the cache still holds belongs to no hypothesis any more.
   for (auto it = fields_.begin(); it != fields_.end();)
     it = it->second.map.use_count() == 1 ? fields_.erase(it) : std::next(it);
+  ++field_calls_;
   std::vector<std::shared_ptr<const grid::OccupancyGrid>> missing;
   for (const Outcome& o : areas) {
     const auto& m = map.area(o.area).map;
-    if (!fields_.count(m.get()) && std::find(missing.begin(), missing.end(), m) == missing.end())
+    const auto it = fields_.find(m.get());
+    if (it != fields_.end())
+      it->second.used = field_calls_;
+    else if (std::find(missing.begin(), missing.end(), m) == missing.end())
       missing.push_back(m);
   }
   std::vector<std::shared_ptr<const MatchField>> built(missing.size());
   for_each_index(missing.size(), [&](size_t i) {
     built[i] = std::make_shared<const MatchField>(*missing[i], matcher_.occupied_threshold());
   });
-  for (size_t i = 0; i < missing.size(); ++i) fields_[missing[i].get()] = {missing[i], built[i]};
+  for (size_t i = 0; i < missing.size(); ++i)
+    fields_[missing[i].get()] = {missing[i], built[i], field_calls_};
   std::vector<std::shared_ptr<const MatchField>> out;
   for (const Outcome& o : areas) out.push_back(fields_.at(map.area(o.area).map.get()).field);
+  // Over the budget: the least recently used go (as the stacks, below),
+  // never one this call uses. A field is a function of its map alone, so
+  // what is evicted and rebuilt never changes a result.
+  const size_t budget = static_cast<size_t>(opt_.field_cache_mb) << 20;
+  while (cached_field_bytes() > budget) {
+    auto victim = fields_.end();
+    for (auto it = fields_.begin(); it != fields_.end(); ++it)
+      if (it->second.used != field_calls_ &&
+          (victim == fields_.end() || it->second.used < victim->second.used))
+        victim = it;
+    if (victim == fields_.end()) break;
+    fields_.erase(victim);
+  }
   return out;
 }
 
@@ -439,6 +457,12 @@ std::vector<std::shared_ptr<const CostStack>> TransitionModel::stacks_for(
     stacks_.erase(victim);
   }
   return out;
+}
+
+size_t TransitionModel::cached_field_bytes() const {
+  size_t n = 0;
+  for (const auto& [key, f] : fields_) n += f.field->bytes();
+  return n;
 }
 
 size_t TransitionModel::cached_stack_bytes() const {

@@ -27,6 +27,7 @@ void TsbiOptions::load(Config& cfg, const std::string& s) {
   bnb_separation_xy = cfg.get_double(s, "bnb_separation_xy", bnb_separation_xy);
   bnb_separation_theta = cfg.get_double(s, "bnb_separation_theta", bnb_separation_theta);
   bnb_cache_mb = cfg.get_int(s, "bnb_cache_mb", bnb_cache_mb);
+  field_cache_mb = cfg.get_int(s, "field_cache_mb", field_cache_mb);
   bnb_margin = cfg.get_double(s, "bnb_margin", bnb_margin);
   bnb_max_blocks = cfg.get_int(s, "bnb_max_blocks", bnb_max_blocks);
   require(bnb_max_blocks >= 1000, s, "bnb_max_blocks", ">= 1000");
@@ -38,6 +39,7 @@ void TsbiOptions::load(Config& cfg, const std::string& s) {
   require(bnb_separation_xy >= 0, s, "bnb_separation_xy", ">= 0");
   require(bnb_separation_theta >= 0, s, "bnb_separation_theta", ">= 0");
   require(bnb_cache_mb >= 0, s, "bnb_cache_mb", ">= 0");
+  require(field_cache_mb >= 0, s, "field_cache_mb", ">= 0");
   search_step_xy = cfg.get_double(s, "search_step_xy", search_step_xy);
   search_step_theta = cfg.get_double(s, "search_step_theta", search_step_theta);
   search_points = cfg.get_int(s, "search_points", search_points);

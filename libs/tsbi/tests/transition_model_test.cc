@@ -258,6 +258,27 @@ TEST(TransitionModel, SameOutcomesWhateverTheStackBudget) {
   EXPECT_EQ(budgetless.cached_stack_bytes(), 0u);
 }
 
+// The match fields too: with no budget each event rebuilds the fields it
+// needs and keeps only those, and the outcomes do not change.
+TEST(TransitionModel, SameOutcomesWhateverTheFieldBudget) {
+  ReturnToAreaOne r;
+  TsbiOptions none;
+  none.log_eta = 10.0;
+  none.field_cache_mb = 0;
+  TransitionModel unbudgeted = model();
+  TransitionModel budgetless(none, metric_slam::MatcherOptions{}, 30.0, area::AreaOptions{});
+  const auto a = unbudgeted.evaluate(r.s.map, 3, r.robot, r.obs);
+  ASSERT_GE(a.size(), 2u);
+  const size_t fields = unbudgeted.cached_fields();
+  EXPECT_GE(fields, 1u);
+  EXPECT_GT(unbudgeted.cached_field_bytes(), 0u);
+  expect_same_outcomes(a, budgetless.evaluate(r.s.map, 3, r.robot, r.obs));
+  expect_same_outcomes(a, budgetless.evaluate(r.s.map, 3, r.robot, r.obs));
+  // Only the fields of the last event stay, however small the budget.
+  EXPECT_LE(budgetless.cached_fields(), fields);
+  expect_same_outcomes(a, unbudgeted.evaluate(r.s.map, 3, r.robot, r.obs));
+}
+
 TEST(ProbableOutcomes, KeepsThoseAboveTheThresholdOrTheBest) {
   std::vector<Outcome> o(3);
   o[0].probability = 0.0005;

@@ -130,6 +130,7 @@ class TransitionModel {
   const TsbiOptions& options() const { return opt_; }
   // Match fields held (for tests and memory accounting).
   size_t cached_fields() const { return fields_.size(); }
+  size_t cached_field_bytes() const;
   // Cost stacks held, and their bytes.
   size_t cached_stacks() const { return stacks_.size(); }
   size_t cached_stack_bytes() const;
@@ -211,8 +212,10 @@ class TransitionModel {
   struct CachedField {
     std::shared_ptr<const grid::OccupancyGrid> map;
     std::shared_ptr<const MatchField> field;
+    uint64_t used = 0;  // the fields_for() call that last used it
   };
   std::map<const grid::OccupancyGrid*, CachedField> fields_;
+  uint64_t field_calls_ = 0;
   // Cost stacks by map, each with the field it was built from (a stack
   // whose map's field went or was replaced goes too; holding the field,
   // not the map, it does not keep the map alive) and the event that last

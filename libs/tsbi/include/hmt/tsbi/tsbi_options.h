@@ -76,6 +76,10 @@ struct TsbiOptions {
   // where the bound cannot prune (long look-alike corridors).
   int bnb_max_blocks = 1000000;
   int bnb_cache_mb = 8;
+  // The match fields are cached up to field_cache_mb (least recently used
+  // rebuilt beyond): fields are rebuilt identically, so results never
+  // depend on it.
+  int field_cache_mb = 16;
   // Before matching, a branch and bound proves for most hopeless areas that
   // no pose in the gate lets min_match_ratio of the points reach an
   // obstacle (match_field.h); it gives up (and the area is matched) after
