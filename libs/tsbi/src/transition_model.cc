@@ -375,6 +375,26 @@ std::vector<Outcome> TransitionModel::reachable_areas(const topology::HmtMap& ma
   return out;
 }
 
+namespace {
+
+// Drops the least recently used entries of `cache` (the oldest `used` first,
+// then in map address order -- which only decides what is rebuilt later,
+// never a result) until `bytes()` is within `budget`; never one used at
+// `now`.
+template <class Cache, class Bytes>
+void evict_least_recent(Cache& cache, size_t budget, uint64_t now, Bytes&& bytes) {
+  while (bytes() > budget) {
+    auto victim = cache.end();
+    for (auto it = cache.begin(); it != cache.end(); ++it)
+      if (it->second.used != now && (victim == cache.end() || it->second.used < victim->second.used))
+        victim = it;
+    if (victim == cache.end()) break;
+    cache.erase(victim);
+  }
+}
+
+}  // namespace
+
 std::vector<std::shared_ptr<const MatchField>> TransitionModel::fields_for(
     const topology::HmtMap& map, const std::vector<Outcome>& areas) {
   // A map only the cache still holds belongs to no hypothesis any more.
@@ -398,19 +418,11 @@ std::vector<std::shared_ptr<const MatchField>> TransitionModel::fields_for(
     fields_[missing[i].get()] = {missing[i], built[i], field_calls_};
   std::vector<std::shared_ptr<const MatchField>> out;
   for (const Outcome& o : areas) out.push_back(fields_.at(map.area(o.area).map.get()).field);
-  // Over the budget: the least recently used go (as the stacks, below),
-  // never one this call uses. A field is a function of its map alone, so
-  // what is evicted and rebuilt never changes a result.
-  const size_t budget = static_cast<size_t>(opt_.field_cache_mb) << 20;
-  while (cached_field_bytes() > budget) {
-    auto victim = fields_.end();
-    for (auto it = fields_.begin(); it != fields_.end(); ++it)
-      if (it->second.used != field_calls_ &&
-          (victim == fields_.end() || it->second.used < victim->second.used))
-        victim = it;
-    if (victim == fields_.end()) break;
-    fields_.erase(victim);
-  }
+  // Over the budget: the least recently used go, never one this call uses.
+  // A field is a function of its map alone, so what is evicted and rebuilt
+  // never changes a result.
+  evict_least_recent(fields_, static_cast<size_t>(opt_.field_cache_mb) << 20, field_calls_,
+                     [&] { return cached_field_bytes(); });
   return out;
 }
 
@@ -443,19 +455,10 @@ std::vector<std::shared_ptr<const CostStack>> TransitionModel::stacks_for(
   std::vector<std::shared_ptr<const CostStack>> out(areas.size());
   for (size_t i = 0; i < areas.size(); ++i)
     if (needed[i]) out[i] = stacks_.at(map.area(areas[i].area).map.get()).stack;
-  // Over the budget: the least recently used go (oldest event first, then
-  // by map address order -- which only decides what is rebuilt later,
-  // never a result), but not those this event uses (`out` holds them).
-  const size_t budget = static_cast<size_t>(opt_.bnb_cache_mb) << 20;
-  while (cached_stack_bytes() > budget) {
-    auto victim = stacks_.end();
-    for (auto it = stacks_.begin(); it != stacks_.end(); ++it)
-      if (it->second.used != events_ &&
-          (victim == stacks_.end() || it->second.used < victim->second.used))
-        victim = it;
-    if (victim == stacks_.end()) break;
-    stacks_.erase(victim);
-  }
+  // Over the budget: the least recently used go, but not those this event
+  // uses (`out` holds them).
+  evict_least_recent(stacks_, static_cast<size_t>(opt_.bnb_cache_mb) << 20, events_,
+                     [&] { return cached_stack_bytes(); });
   return out;
 }
 
