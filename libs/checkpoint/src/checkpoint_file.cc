@@ -192,17 +192,19 @@ RunIdentity read_identity(const std::string& path) {
   }
 }
 
-void load(const std::string& path, framework::HmtSystem& system) {
+RunIdentity load(const std::string& path, framework::HmtSystem& system) {
   std::ifstream in = open_checked(path);
   cereal::BinaryInputArchive ar(in);
+  RunIdentity id;
   try {
-    read_identity_from(ar, path);
+    id = read_identity_from(ar, path);
     read_state(ar, system);
   } catch (const cereal::Exception& e) {
     throw InputError("checkpoint '" + path + "': unreadable state (" + e.what() + ")");
   }
   if (in.peek() != std::ifstream::traits_type::eof())
     throw InputError("checkpoint '" + path + "': bytes left over after the state");
+  return id;
 }
 
 }  // namespace hmt::checkpoint

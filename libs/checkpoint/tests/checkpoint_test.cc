@@ -121,7 +121,7 @@ TEST(Checkpoint, AResumedRunEndsExactlyAsTheUninterruptedOne) {
     EXPECT_EQ(id.config, "[metric_slam]\nparticles = 30\n");
 
     framework::HmtSystem resumed(testing_ring::ring_options(), deterministic());
-    load(path, resumed);
+    EXPECT_EQ(load(path, resumed).steps, cut);
     // Tiles and maps shared copy-on-write are shared again, not copied.
     EXPECT_EQ(resumed.filter().map_memory_bytes(), memory_saved);
     EXPECT_EQ(resumed.steps_fed(), cut);

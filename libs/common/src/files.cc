@@ -14,9 +14,13 @@
 namespace hmt {
 namespace fs = std::filesystem;
 
+// A temporary's name: the output's, this infix, the writing process's id
+// (remove_stale_temporaries reads it back).
+constexpr char kTempInfix[] = ".tmp.";
+
 void write_file_atomically(const std::string& path,
                            const std::function<void(std::ostream&)>& fill) {
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  const std::string tmp = path + kTempInfix + std::to_string(::getpid());
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw OutputError("cannot create output file '" + tmp + "'");
@@ -56,9 +60,10 @@ void remove_stale_temporaries(const std::string& dir) {
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    const size_t at = name.rfind(".tmp.");
-    if (at == std::string::npos || at + 5 >= name.size()) continue;
-    const std::string pid = name.substr(at + 5);
+    const size_t at = name.rfind(kTempInfix);
+    const size_t digits = at + sizeof kTempInfix - 1;
+    if (at == std::string::npos || digits >= name.size()) continue;
+    const std::string pid = name.substr(digits);
     if (pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
     // kill(pid, 0) fails with ESRCH when no such process runs.
     if (::kill(static_cast<pid_t>(std::stol(pid)), 0) == 0 || errno != ESRCH) continue;

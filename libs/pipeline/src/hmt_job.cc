@@ -120,7 +120,9 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   // A run killed while writing leaves a temporary beside the output.
   remove_stale_temporaries(out_dir);
   // The configuration first: a run that fails later still says what it used.
-  write_text_atomically(out_dir + "/config_effective.ini", cfg.effective_ini());
+  // The same text goes into every checkpoint.
+  const std::string config_text = cfg.effective_ini();
+  write_text_atomically(out_dir + "/config_effective.ini", config_text);
 
   size_t n = log.steps.size();
   if (opt.input.max_steps > 0) n = std::min(n, static_cast<size_t>(opt.input.max_steps));
@@ -138,7 +140,9 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   size_t start = 0;
   uint32_t log_crc = 0;
   if (!checkpoint_path.empty()) {
-    const checkpoint::RunIdentity id = checkpoint::read_identity(checkpoint_path);
+    // Loaded before the log is checked against it: the file is read once,
+    // and a wrong log only costs the load on the way to its error.
+    const checkpoint::RunIdentity id = checkpoint::load(checkpoint_path, system);
     if (id.steps >= n)
       throw InputError("checkpoint '" + checkpoint_path + "' holds " + std::to_string(id.steps) +
                        " scans, but the log '" + log.source + "' has only " + std::to_string(n) +
@@ -148,13 +152,12 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
       throw InputError("the log '" + log.source + "' does not begin with the " +
                        std::to_string(id.steps) + " scans checkpoint '" + checkpoint_path +
                        "' processed: not the log it was written from");
-    checkpoint::load(checkpoint_path, system);
     start = static_cast<size_t>(id.steps);
   }
   const std::string checkpoint_out = out_dir + "/checkpoint.bin";
   const auto save_checkpoint = [&](size_t steps) {
     checkpoint::RunIdentity id;
-    id.config = cfg.effective_ini();
+    id.config = config_text;
     id.input = opt.input.log;
     id.steps = steps;
     id.log_crc = log_crc;
@@ -163,7 +166,8 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   };
   // A live run's processes are never all idle between two scans and its
   // results depend on timing: there is no state that would resume it.
-  const bool periodic = opt.output.checkpoint_every > 0 && opt.framework.mode != framework::Mode::kLive;
+  const bool live = opt.framework.mode == framework::Mode::kLive;
+  const bool periodic = opt.output.checkpoint_every > 0 && !live;
   if (opt.output.checkpoint_every > 0 && !periodic)
     std::fprintf(stderr, "hmt-slam: [framework] mode = live: no checkpoints ([output] "
                  "checkpoint_every = %d ignored; a live run cannot be resumed)\n",
@@ -192,7 +196,6 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
     progress.update(e.valid && e.step >= first_step ? e.step + 1 - first_step : 0, extra);
     log_crc = checkpoint::log_fingerprint(log_crc, log.steps[i]);
     const int sig = stop_signal();
-    const bool live = opt.framework.mode == framework::Mode::kLive;
     if (sig != 0) {
       progress.finish();
       std::string where = "no checkpoint: a live run cannot be resumed";

@@ -68,8 +68,8 @@ void save(const std::string& path, const RunIdentity& identity,
 RunIdentity read_identity(const std::string& path);
 
 // Restores the state saved in `path` into a system constructed with the
-// checkpoint's configuration, before its start(). Throws InputError if the
-// file is not a valid checkpoint.
-void load(const std::string& path, framework::HmtSystem& system);
+// checkpoint's configuration, before its start(), and returns its identity.
+// Throws InputError if the file is not a valid checkpoint.
+RunIdentity load(const std::string& path, framework::HmtSystem& system);
 
 }  // namespace hmt::checkpoint
