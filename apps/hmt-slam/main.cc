@@ -16,6 +16,7 @@
 #include "hmt/common/config.h"
 #include "hmt/common/error.h"
 #include "hmt/common/files.h"
+#include "hmt/common/resources.h"
 #include "hmt/io/log_reader.h"
 #include "hmt/io/rawlog.h"
 #include "hmt/islands/islands_job.h"
@@ -158,6 +159,7 @@ int dump_config(const std::vector<std::string>& configs, const std::vector<std::
 }  // namespace
 
 int main(int argc, char** argv) {
+  hmt::fix_allocator_mmap_threshold();  // resources.h says why
   // A file-size limit (ulimit -f, or a quota) would otherwise kill the
   // process with SIGXFSZ in the middle of writing an output; ignored, the
   // write fails (EFBIG) and ends in the OutputError naming the file, and the

@@ -3,7 +3,11 @@
 #include <sys/resource.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 namespace hmt {
 namespace {
@@ -38,5 +42,14 @@ size_t peak_rss_bytes() {
 }
 
 size_t current_rss_bytes() { return proc_status_kb("VmRSS:") * 1024; }
+
+void fix_allocator_mmap_threshold() {
+#if defined(__GLIBC__)
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  if (tunables && std::strstr(tunables, "malloc.mmap_threshold")) return;
+  // Setting M_MMAP_THRESHOLD also turns glibc's dynamic adjustment off.
+  mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+#endif
+}
 
 }  // namespace hmt
