@@ -12,8 +12,17 @@ pose (a few milliseconds apart in a log of coarse timestamps, yet a true
 motion of 0.3-0.4 m: the trajectory cannot measure them; on Intel 28 of the
 144 matched, leaving the 116 usable relations of the datasets' README).
 
-Usage: relation_error.py TRAJECTORY RELATIONS [--json]
+Usage: relation_error.py TRAJECTORY RELATIONS [--json] [--worst N [--against OTHER]]
 TRAJECTORY: TUM ("t x y z qx qy qz qw") or "t x y theta" per line.
+
+--worst N lists the N relations with the largest translational error (scan
+indices, the true distance, both errors) and the mean without them; with
+--against OTHER (another trajectory of the same log, e.g. the dataset's
+reference), each listed relation also shows OTHER's errors and how far the
+two trajectories' own relative poses differ. Two independent estimates that
+agree with each other to centimetres and both miss a relation by decimetres
+point at the relation (or at what this log can measure of it), not at
+either estimate.
 """
 import bisect
 import json
@@ -62,9 +71,11 @@ def nearest_index(times, t, tol=0.01):
     return best
 
 
-def evaluate(traj, relations_path):
+def scored(traj, relations_path):
+    """Every usable relation: (i, j, truth (x, y, yaw), estimate (x, y, yaw))
+    with i, j the trajectory's indices of its two ends."""
     times = [p[0] for p in traj]
-    et, er = [], []
+    out = []
     with open(relations_path) as f:
         for line in f:
             s = line.split()
@@ -74,10 +85,50 @@ def evaluate(traj, relations_path):
             i, j = nearest_index(times, t1), nearest_index(times, t2)
             if i is None or j is None or i == j:
                 continue
-            r = relative(traj[i][1:], traj[j][1:])
-            et.append(math.hypot(r[0] - x, r[1] - y))
-            er.append(abs(wrap(r[2] - yaw)))
+            out.append((i, j, (x, y, yaw), relative(traj[i][1:], traj[j][1:])))
+    return out
+
+
+def errors(truth, est):
+    """Translational and absolute rotational error of one relation."""
+    return math.hypot(est[0] - truth[0], est[1] - truth[1]), abs(wrap(est[2] - truth[2]))
+
+
+def evaluate(traj, relations_path):
+    et, er = [], []
+    for _, _, truth, est in scored(traj, relations_path):
+        t, r = errors(truth, est)
+        et.append(t)
+        er.append(r)
     return et, er
+
+
+def worst(traj, relations_path, n, other=None):
+    """The n relations of largest translational error, as printable lines,
+    with `other`'s errors and the two estimates' difference when given."""
+    rows = scored(traj, relations_path)
+    rows_other = scored(other, relations_path) if other is not None else None
+    if rows_other is not None and len(rows_other) != len(rows):
+        raise SystemExit("--against: the two trajectories do not match the same relations "
+                         f"({len(rows)} and {len(rows_other)})")
+    order = sorted(range(len(rows)), key=lambda k: -errors(rows[k][2], rows[k][3])[0])
+    lines = []
+    for k in order[:n]:
+        i, j, truth, est = rows[k]
+        t, r = errors(truth, est)
+        line = (f"scans {i:5d} {j:5d}  true {math.hypot(truth[0], truth[1]):6.3f} m  "
+                f"error {t:.3f} m {math.degrees(r):6.2f} deg")
+        if rows_other is not None:
+            oest = rows_other[k][3]
+            ot, orr = errors(truth, oest)
+            dt, dr = errors(oest, est)
+            line += (f"  | other {ot:.3f} m {math.degrees(orr):6.2f} deg"
+                     f"  | between them {dt:.3f} m {math.degrees(dr):6.2f} deg")
+        lines.append(line)
+    rest = [errors(rows[k][2], rows[k][3])[0] for k in order[n:]]
+    lines.append(f"mean translational error without these {n}: "
+                 f"{stats(rest)[0]:.4f} m over {len(rest)}")
+    return lines
 
 
 def stats(v):
@@ -89,7 +140,27 @@ def stats(v):
 
 
 def main():
-    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    argv = sys.argv[1:]
+    n_worst, against = None, None
+    for flag in ("--worst", "--against"):
+        if flag in argv:
+            k = argv.index(flag)
+            if k + 1 >= len(argv):
+                raise SystemExit(f"{flag} needs a value\n{__doc__}")
+            value = argv[k + 1]
+            del argv[k:k + 2]
+            if flag == "--worst":
+                try:
+                    n_worst = int(value)
+                except ValueError:
+                    raise SystemExit(f"--worst: not a count: {value}")
+                if n_worst < 1:
+                    raise SystemExit(f"--worst: not a count: {value}")
+            else:
+                against = value
+    if against is not None and n_worst is None:
+        raise SystemExit("--against goes with --worst N")
+    args = [a for a in argv if not a.startswith("--")]
     if len(args) != 2:
         raise SystemExit(__doc__)
     et, er = evaluate(load_trajectory(args[0]), args[1])
@@ -106,6 +177,10 @@ def main():
     else:
         print(f"relations: {len(et)}  translational {tm:.4f} +- {ts:.4f} m  "
               f"rotational {rm:.3f} +- {rs:.3f} deg")
+    if n_worst is not None and et:
+        other = load_trajectory(against) if against is not None else None
+        for line in worst(load_trajectory(args[0]), args[1], n_worst, other):
+            print(line)
     if not et:
         sys.exit(3)
 
