@@ -151,6 +151,34 @@ bool GridRbpf::begin_step(const LogStep& input) {
 
 size_t GridRbpf::pending_moves() const { return step_ ? particles_.size() : 0; }
 
+Pose2D GridRbpf::search_headings(const Particle& p, const Pose2D& u, const ScanPoints& pts,
+                                 const Pose2D& first, MatchScore* score) const {
+  const double step = 2.0 * opt_.matcher.angular_step;
+  if (!(opt_.heading_search_range >= step) || !(step > 0)) return first;
+  const Pose2D guess = p.pose + u;
+  // The target of the optimal proposal is p(z|x,m) p(x|x',u): its mode, not
+  // the likelihood's alone, decides between the starts.
+  auto target = [&](const Pose2D& x, const MatchScore& s) {
+    return s.log_likelihood / opt_.proposal_gain + motion_.log_density(p.pose, u, x);
+  };
+  Pose2D best = first;
+  double best_target = target(first, *score);
+  const int k_max = static_cast<int>(std::floor(opt_.heading_search_range / step + 1e-9));
+  for (int k = 1; k <= k_max; ++k)
+    for (int sign : {1, -1}) {
+      const Pose2D start(guess.x, guess.y, wrap_angle(guess.theta + sign * k * step));
+      MatchScore s;
+      const Pose2D m = matcher_.optimize(p.map, start, pts, &s);
+      const double t = target(m, s);
+      if (t > best_target) {
+        best = m;
+        best_target = t;
+        *score = s;
+      }
+    }
+  return best;
+}
+
 void GridRbpf::move(size_t i) {
   Step& st = *step_;
   const ScanPoints& pts = st.pts;
@@ -162,7 +190,9 @@ void GridRbpf::move(size_t i) {
 
   if (opt_.proposal == ProposalKind::kOptimal && n > 0) {
     MatchScore ms;
-    const Pose2D mode = matcher_.optimize(p.map, p.pose + u, pts, &ms);
+    Pose2D mode = matcher_.optimize(p.map, p.pose + u, pts, &ms);
+    if (ms.matched < opt_.heading_search_ratio * static_cast<double>(n))
+      mode = search_headings(p, u, pts, mode, &ms);
     if (ms.matched >= opt_.matcher.min_match_ratio * static_cast<double>(n)) {
       const Lattice lat =
           evaluate_lattice(p.map, p.pose, u, st.lattice_pts, st.lattice_scale, mode);

@@ -1,5 +1,7 @@
 #include "hmt/metric_slam/rbpf_options.h"
 
+#include <cmath>
+
 #include <string>
 
 namespace hmt::metric_slam {
@@ -20,6 +22,8 @@ void RbpfOptions::load(Config& cfg) {
   sample_linear = cfg.get_double(s, "sample_linear", sample_linear);
   sample_angular = cfg.get_double(s, "sample_angular", sample_angular);
   lattice_beams = cfg.get_int(s, "lattice_beams", lattice_beams);
+  heading_search_ratio = cfg.get_double(s, "heading_search_ratio", heading_search_ratio);
+  heading_search_range = cfg.get_double(s, "heading_search_range", heading_search_range);
   require(particles >= 1 && particles <= 100000, s, "particles", "in [1, 100000]");
   require(seed_i >= 0, s, "seed", ">= 0");
   seed = static_cast<uint64_t>(seed_i);
@@ -38,6 +42,10 @@ void RbpfOptions::load(Config& cfg) {
   require(sample_linear > 0, s, "sample_linear", "> 0");
   require(sample_angular > 0, s, "sample_angular", "> 0");
   require(lattice_beams >= 0, s, "lattice_beams", ">= 0 (0: all beams)");
+  require(heading_search_ratio >= 0 && heading_search_ratio <= 1, s, "heading_search_ratio",
+          "in [0, 1] (0: off)");
+  require(heading_search_range >= 0 && heading_search_range <= M_PI, s, "heading_search_range",
+          "in [0, pi] (0: off)");
 
   resolution = cfg.get_double("grid", "resolution", resolution);
   require(resolution >= 0.005 && resolution <= 1.0, "grid", "resolution",

@@ -46,6 +46,31 @@ TEST(GridRbpf, TracksBetterThanOdometry) {
   EXPECT_EQ(f.best().path.size(), run.log.steps.size());
 }
 
+// The odometry of a few steps reports a turn the robot did not make (a
+// slipping wheel): 0.7 rad each, more than the hill climbing alone recovers
+// from in this world (it does from 0.5).
+testing_sim::SimRun with_false_turns(testing_sim::SimRun run) {
+  for (size_t i : {20u, 45u, 70u}) run.log.steps.at(i).odometry_increment.theta += 0.7;
+  return run;
+}
+
+double final_heading_error(const testing_sim::SimRun& run, const RbpfOptions& o) {
+  GridRbpf f(o);
+  for (const auto& st : run.log.steps) f.process(st);
+  const Pose2D est = run.truth.front() + f.best().pose;
+  return std::fabs(wrap_angle(est.theta - run.truth.back().theta));
+}
+
+TEST(GridRbpf, HeadingSearchRecoversFromAFalseTurnInTheOdometry) {
+  const auto run = with_false_turns(loop_run(11));
+  RbpfOptions on = small_filter(2), off = small_filter(2);
+  on.heading_search_ratio = 0.5;
+  ASSERT_EQ(off.heading_search_ratio, 0.0);  // the default does not search
+  // Without the search the filter keeps (some of) the false turns.
+  EXPECT_GT(final_heading_error(run, off), 0.2);
+  EXPECT_LT(final_heading_error(run, on), 0.05);
+}
+
 TEST(GridRbpf, DeterministicWhateverTheThreadCount) {
   const auto run = loop_run(12);
   GridRbpf a(small_filter(1)), b(small_filter(3));

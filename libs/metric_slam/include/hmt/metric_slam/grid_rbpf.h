@@ -147,6 +147,12 @@ class GridRbpf {
   Lattice evaluate_lattice(const grid::OccupancyGrid& map, const Pose2D& from,
                            const Pose2D& u, const ScanPoints& pts, double scale,
                            const Pose2D& center) const;
+  // The scan match `first` (from the odometry guess, scoring *score) and
+  // the matches started at headings around the guess
+  // ([metric_slam] heading_search_range): the one of highest likelihood x
+  // motion prior, its score in *score.
+  Pose2D search_headings(const Particle& p, const Pose2D& u, const ScanPoints& pts,
+                         const Pose2D& first, MatchScore* score) const;
   void initialise(const LogStep& step);
   void maybe_insert(Particle& p, const LaserScan& scan);
   void resample_if_needed();

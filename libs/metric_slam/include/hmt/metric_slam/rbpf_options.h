@@ -39,6 +39,15 @@ struct RbpfOptions {
   double sample_angular = 0.01;
   // The lattice uses at most this many evenly spread beams (0 = all).
   int lattice_beams = 60;
+  // When the scan match started from the odometry explains fewer than
+  // heading_search_ratio of the beams, the odometry's heading may be far off
+  // (a fast turn, a slipping wheel): the match is also started from headings
+  // up to heading_search_range (rad) either side, 2 x [scan_matcher]
+  // angular_step apart (the hill climbing's basin), and the mode of
+  // likelihood x motion prior among the results is kept. 0 for either: off
+  // (the default; the README has what it changes on the shared logs).
+  double heading_search_ratio = 0.0;
+  double heading_search_range = 0.5;
 
   double resolution = 0.05;
   grid::InsertionOptions insertion;
