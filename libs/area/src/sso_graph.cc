@@ -261,21 +261,6 @@ void SsoGraph::index_box(uint32_t slot, bool insert) {
   }
 }
 
-size_t SsoGraph::approximate_bytes() const {
-  size_t n = sizeof(*this);
-  for (const Node& node : nodes_) {
-    const size_t points = node.scan.size();
-    // Robot-frame and common-frame points, ranges, covariances, and the
-    // point grid's entry per point.
-    n += sizeof(Node) + points * (2 * sizeof(Point2D) + sizeof(double) +
-                                  sizeof(Eigen::Matrix2d) + 2 * sizeof(uint32_t));
-    n += node.adj.capacity() * sizeof(Adj);
-  }
-  for (const auto& [key, cell] : point_index_) n += sizeof(key) + cell.capacity() * sizeof(Entry);
-  for (const auto& [key, cell] : box_index_) n += sizeof(key) + cell.capacity() * sizeof(uint32_t);
-  return n;
-}
-
 void SsoGraph::remove(int id) {
   const auto it = slot_of_.find(id);
   if (it == slot_of_.end())

@@ -183,32 +183,9 @@ std::vector<Pose2D> TransitionModel::bnb_search(const CostStack& stack, const Ma
   return out;
 }
 
-std::shared_ptr<const area::SsoGraph> TransitionModel::area_graph(
-    const topology::Area& area) const {
-  auto graph = std::make_shared<area::SsoGraph>(area_);
-  for (size_t i = 0; i < area.keyframes.size(); ++i)
-    graph->add(static_cast<int>(i),
-               {area::PoseGaussian(area.keyframes[i].pose), area.keyframes[i].scan});
-  return graph;
-}
-
 bool TransitionModel::same_area(const topology::Area& area, const Pose2D& robot,
-                                const Observations& obs, const area::SsoGraph* own) const {
+                                const Observations& obs) const {
   if (area.keyframes.empty() || obs.scans.empty()) return true;  // nothing to check with
-  if (own) {
-    // Every keyframe takes part (the area has no more than
-    // area_check_keyframes): the graph below, with the same ids added in
-    // the same order, so W and the cut are those computed from scratch.
-    area::SsoGraph graph(*own);
-    std::vector<char> in_latest(area.keyframes.size(), 0);
-    int id = static_cast<int>(area.keyframes.size());
-    for (const PosedScan& ps : obs.scans) {
-      graph.add(id++, {area::PoseGaussian(robot + ps.pose), *ps.scan});
-      in_latest.push_back(1);
-    }
-    const area::WeightMatrix W = graph.weight_matrix(graph.ids());
-    return area::normalized_cut(W, in_latest) >= area_.partition.tau;
-  }
   // The area's keyframes nearest to the robot, then the latest scans placed
   // at the mode; ids: area keyframes first.
   std::vector<size_t> order(area.keyframes.size());
@@ -485,75 +462,6 @@ std::vector<std::shared_ptr<const CostStack>> TransitionModel::stacks_for(
   return out;
 }
 
-namespace {
-
-bool same_scan(const LaserScan& a, const LaserScan& b) {
-  return a.timestamp == b.timestamp && a.angle_min == b.angle_min &&
-         a.angle_increment == b.angle_increment && a.max_range == b.max_range &&
-         a.sensor_pose.x == b.sensor_pose.x && a.sensor_pose.y == b.sensor_pose.y &&
-         a.sensor_pose.theta == b.sensor_pose.theta && a.ranges == b.ranges && a.valid == b.valid;
-}
-
-bool same_keyframes(const std::vector<topology::Keyframe>& a,
-                    const std::vector<topology::Keyframe>& b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (a[i].pose.x != b[i].pose.x || a[i].pose.y != b[i].pose.y ||
-        a[i].pose.theta != b[i].pose.theta || !same_scan(a[i].scan, b[i].scan))
-      return false;
-  return true;
-}
-
-}  // namespace
-
-std::vector<std::shared_ptr<const area::SsoGraph>> TransitionModel::area_graphs_for(
-    const topology::HmtMap& map, const std::vector<Outcome>& areas,
-    const std::vector<char>& needs) {
-  std::vector<std::shared_ptr<const area::SsoGraph>> out(areas.size());
-  // A map only the cache still holds belongs to no hypothesis any more.
-  for (auto it = area_graphs_.begin(); it != area_graphs_.end();)
-    it = it->second.map.use_count() == 1 ? area_graphs_.erase(it) : std::next(it);
-  if (opt_.area_check_cache_mb == 0) return out;
-  ++area_graph_calls_;
-  std::vector<size_t> missing;  // indices into areas
-  for (size_t i = 0; i < areas.size(); ++i) {
-    if (!needs[i]) continue;
-    const topology::Area& a = map.area(areas[i].area);
-    if (a.keyframes.empty() ||
-        a.keyframes.size() > static_cast<size_t>(opt_.area_check_keyframes))
-      continue;
-    const auto it = area_graphs_.find(a.map.get());
-    if (it != area_graphs_.end() && same_keyframes(it->second.keyframes, a.keyframes)) {
-      it->second.used = area_graph_calls_;
-      out[i] = it->second.graph;
-    } else {
-      missing.push_back(i);
-    }
-  }
-  std::vector<std::shared_ptr<const area::SsoGraph>> built(missing.size());
-  for_each_index(missing.size(), [&](size_t k) {
-    built[k] = area_graph(map.area(areas[missing[k]].area));
-  });
-  for (size_t k = 0; k < missing.size(); ++k) {
-    const topology::Area& a = map.area(areas[missing[k]].area);
-    out[missing[k]] = built[k];
-    size_t bytes = built[k]->approximate_bytes();
-    for (const topology::Keyframe& kf : a.keyframes)
-      bytes += sizeof(kf) + kf.scan.ranges.capacity() * sizeof(float) + kf.scan.valid.capacity();
-    area_graphs_[a.map.get()] = {a.map, a.keyframes, built[k], bytes, area_graph_calls_};
-  }
-  // Over the budget: the least recently used go, never one this call uses
-  // (`out` holds them anyway). A graph is a function of its keyframes alone,
-  // so what is evicted and rebuilt never changes a result.
-  evict_least_recent(area_graphs_, static_cast<size_t>(opt_.area_check_cache_mb) << 20,
-                     area_graph_calls_, [&] {
-                       size_t n = 0;
-                       for (const auto& [key, g] : area_graphs_) n += g.bytes;
-                       return n;
-                     });
-  return out;
-}
-
 size_t TransitionModel::cached_field_bytes() const {
   size_t n = 0;
   for (const auto& [key, f] : fields_) n += f.field->bytes();
@@ -617,22 +525,17 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
     const auto [i, k] = jobs[j];
     matches[i][k] = match_from(*map.area(areas[i].area).map, searches[i].starts[k], obs);
   });
-  std::vector<ExpectedLikelihood> f(areas.size());
-  for_each_index(areas.size(), [&](size_t i) { f[i] = sum_modes(searches[i], matches[i], obs); });
-  std::vector<char> checked(areas.size(), 0);
-  for (size_t i = 0; i < areas.size(); ++i) checked[i] = f[i].candidate && opt_.area_check;
-  const auto own = area_graphs_for(map, areas, checked);
   std::vector<char> candidate(areas.size(), 0);
   for_each_index(areas.size(), [&](size_t i) {
-    if (!f[i].candidate) return;
-    if (checked[i] && !same_area(map.area(areas[i].area), f[i].robot.mean, obs, own[i].get()))
-      return;
-    const ExpectedLikelihood& fi = f[i];
+    const topology::Area& area = map.area(areas[i].area);
+    const ExpectedLikelihood f = sum_modes(searches[i], matches[i], obs);
+    if (!f.candidate) return;
+    if (opt_.area_check && !same_area(area, f.robot.mean, obs)) return;
     Outcome& o = areas[i];
-    o.log_f = fi.log_f;
-    o.robot = fi.robot;
-    o.match_ratio = fi.match_ratio;
-    o.modes = fi.modes;
+    o.log_f = f.log_f;
+    o.robot = f.robot;
+    o.match_ratio = f.match_ratio;
+    o.modes = f.modes;
     candidate[i] = 1;
   });
   for (size_t i = 0; i < areas.size(); ++i)

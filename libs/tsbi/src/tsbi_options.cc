@@ -28,8 +28,6 @@ void TsbiOptions::load(Config& cfg, const std::string& s) {
   bnb_separation_theta = cfg.get_double(s, "bnb_separation_theta", bnb_separation_theta);
   bnb_cache_mb = cfg.get_int(s, "bnb_cache_mb", bnb_cache_mb);
   field_cache_mb = cfg.get_int(s, "field_cache_mb", field_cache_mb);
-  area_check_cache_mb = cfg.get_int(s, "area_check_cache_mb", area_check_cache_mb);
-  require(area_check_cache_mb >= 0, s, "area_check_cache_mb", ">= 0");
   bnb_margin = cfg.get_double(s, "bnb_margin", bnb_margin);
   bnb_max_blocks = cfg.get_int(s, "bnb_max_blocks", bnb_max_blocks);
   require(bnb_max_blocks >= 1000, s, "bnb_max_blocks", ">= 1000");

@@ -279,43 +279,6 @@ TEST(TransitionModel, SameOutcomesWhateverTheFieldBudget) {
   expect_same_outcomes(a, unbudgeted.evaluate(r.s.map, 3, r.robot, r.obs));
 }
 
-TEST(TransitionModel, TheAreaCheckCacheChangesNoOutcome) {
-  ReturnToAreaOne r;
-  const auto world = testing_sim::office_world();
-  // The areas' keyframes: the scans their maps were made of, in their frames.
-  for (const Pose2D& p : {Pose2D(2, 2, 0), Pose2D(4, 4, 1.5), Pose2D(6, 8, 3.0), Pose2D(2, 8, -1.5)})
-    r.s.map.add_keyframe(1, {p, test_maps::scan_at(world, p)});
-  for (const Pose2D& p : {Pose2D(12, 3, 0), Pose2D(17, 5, 1.5), Pose2D(12, 8, 3.0)})
-    r.s.map.add_keyframe(2, {p - r.s.origin2, test_maps::scan_at(world, p)});
-  // The latest observations with their scans, which the area check uses.
-  const std::vector<Pose2D> poses{{2.0, 2.8, 0.2}, {2.5, 2.9, 0.2}, {3, 3, 0.2}};
-  std::vector<LaserScan> scans;
-  for (const Pose2D& p : poses) scans.push_back(test_maps::scan_at(world, p));
-  std::vector<PosedScan> posed;
-  for (size_t i = 0; i < poses.size(); ++i) posed.push_back({poses[i], &scans[i]});
-  const Observations obs = gather_observations(posed, poses.back(), 20.0, 0.05, 600);
-  ASSERT_EQ(obs.scans.size(), poses.size());
-
-  TsbiOptions none;
-  none.log_eta = 10.0;
-  none.area_check_cache_mb = 0;
-  TransitionModel uncached(none, metric_slam::MatcherOptions{}, 30.0, area::AreaOptions{});
-  TransitionModel cached = model();
-  const auto a = uncached.evaluate(r.s.map, 3, r.robot, obs);
-  ASSERT_GE(a.size(), 2u);
-  EXPECT_EQ(a[1].area, 1u);  // the return passes the check
-  EXPECT_EQ(uncached.cached_area_graphs(), 0u);
-  expect_same_outcomes(a, cached.evaluate(r.s.map, 3, r.robot, obs));
-  EXPECT_EQ(cached.cached_area_graphs(), 1u);  // area 1, the candidate checked
-  expect_same_outcomes(a, cached.evaluate(r.s.map, 3, r.robot, obs));  // from the cache
-  // Area 1 gains a keyframe but keeps its map: the cached graph, built from
-  // the other keyframes, is not used.
-  r.s.map.add_keyframe(1, {Pose2D(3, 6, 0.5), test_maps::scan_at(world, Pose2D(3, 6, 0.5))});
-  expect_same_outcomes(uncached.evaluate(r.s.map, 3, r.robot, obs),
-                       cached.evaluate(r.s.map, 3, r.robot, obs));
-  EXPECT_EQ(cached.cached_area_graphs(), 1u);
-}
-
 TEST(ProbableOutcomes, KeepsThoseAboveTheThresholdOrTheBest) {
   std::vector<Outcome> o(3);
   o[0].probability = 0.0005;

@@ -68,9 +68,6 @@ class SsoGraph {
   // SSO of a stored pair; 0 when no edge is stored.
   double weight(int a, int b) const;
   size_t num_edges() const { return num_edges_; }
-  // Memory the graph holds, roughly (its keyframes' points, covariances and
-  // indexes, and its edges): for cache budgets.
-  size_t approximate_bytes() const;
 
   // Symmetric sparse W over `ids` (row k = ids[k]), zero diagonal; edges to
   // keyframes not listed are left out.

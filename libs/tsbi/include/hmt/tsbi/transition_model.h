@@ -69,7 +69,6 @@
 #include <vector>
 
 #include "hmt/area/area_options.h"
-#include "hmt/area/sso_graph.h"
 #include "hmt/metric_slam/scan_matcher.h"
 #include "hmt/metric_slam/scan_points.h"
 #include "hmt/metric_slam/worker_pool.h"
@@ -134,8 +133,6 @@ class TransitionModel {
   size_t cached_field_bytes() const;
   // Cost stacks held, and their bytes.
   size_t cached_stacks() const { return stacks_.size(); }
-  // Keyframe graphs held for the area check.
-  size_t cached_area_graphs() const { return area_graphs_.size(); }
   size_t cached_stack_bytes() const;
 
  private:
@@ -200,21 +197,8 @@ class TransitionModel {
                                  const metric_slam::ScanPoints& obs) const;
   // The area check of TsbiOptions::area_check, with the robot at `robot` in
   // the area's frame.
-  // `own`, if given, is the graph of all the area's keyframes alone
-  // (keyframe i as id i), built by area_graph(): it is copied and the
-  // latest scans added, instead of every keyframe pair being matched again.
   bool same_area(const topology::Area& area, const Pose2D& robot,
-                 const Observations& obs, const area::SsoGraph* own = nullptr) const;
-  // The graph of the area's keyframes alone (ids 0.. in order), as
-  // same_area() would build it before adding the latest scans.
-  std::shared_ptr<const area::SsoGraph> area_graph(const topology::Area& area) const;
-  // The cached keyframe graphs of the areas among `areas` whose outcome
-  // `needs[i]` is set (null where the area is too large to cache), built
-  // in parallel where missing; drops entries of maps no hypothesis holds
-  // and keeps the cache within area_check_cache_mb.
-  std::vector<std::shared_ptr<const area::SsoGraph>> area_graphs_for(
-      const topology::HmtMap& map, const std::vector<Outcome>& areas,
-      const std::vector<char>& needs);
+                 const Observations& obs) const;
   // fn(i) for i in [0, n), on the pool if there is one.
   void for_each_index(size_t n, const std::function<void(size_t)>& fn) const;
 
@@ -243,18 +227,6 @@ class TransitionModel {
   };
   std::map<const grid::OccupancyGrid*, CachedStack> stacks_;
   uint64_t events_ = 0;
-  // The area check's keyframe graphs by area map, with the keyframes they
-  // were built from (an entry is used only for those same keyframes) and
-  // the area_graphs_for() call that last used it.
-  struct CachedAreaGraph {
-    std::shared_ptr<const grid::OccupancyGrid> map;
-    std::vector<topology::Keyframe> keyframes;
-    std::shared_ptr<const area::SsoGraph> graph;
-    size_t bytes = 0;
-    uint64_t used = 0;
-  };
-  std::map<const grid::OccupancyGrid*, CachedAreaGraph> area_graphs_;
-  uint64_t area_graph_calls_ = 0;
 };
 
 // The outcomes worth following: indices of those with probability >=

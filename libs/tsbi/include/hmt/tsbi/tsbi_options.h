@@ -80,12 +80,6 @@ struct TsbiOptions {
   // rebuilt beyond): fields are rebuilt identically, so results never
   // depend on it.
   int field_cache_mb = 16;
-  // The area check's graph of each area's own keyframes (their SSO with
-  // one another, which the latest observations do not change) is cached up
-  // to area_check_cache_mb, for areas of at most area_check_keyframes
-  // keyframes (larger ones are checked with their keyframes nearest the
-  // robot, a set that moves). Rebuilt identically: results never depend on it.
-  int area_check_cache_mb = 8;
   // Before matching, a branch and bound proves for most hopeless areas that
   // no pose in the gate lets min_match_ratio of the points reach an
   // obstacle (match_field.h); it gives up (and the area is matched) after
