@@ -24,6 +24,7 @@ agree with each other to centimetres and both miss a relation by decimetres
 point at the relation (or at what this log can measure of it), not at
 either estimate.
 """
+import argparse
 import bisect
 import json
 import math
@@ -94,20 +95,20 @@ def errors(truth, est):
     return math.hypot(est[0] - truth[0], est[1] - truth[1]), abs(wrap(est[2] - truth[2]))
 
 
-def evaluate(traj, relations_path):
+def evaluate(rows):
+    """Translational and rotational errors of the rows of scored()."""
     et, er = [], []
-    for _, _, truth, est in scored(traj, relations_path):
+    for _, _, truth, est in rows:
         t, r = errors(truth, est)
         et.append(t)
         er.append(r)
     return et, er
 
 
-def worst(traj, relations_path, n, other=None):
-    """The n relations of largest translational error, as printable lines,
-    with `other`'s errors and the two estimates' difference when given."""
-    rows = scored(traj, relations_path)
-    rows_other = scored(other, relations_path) if other is not None else None
+def worst(rows, n, rows_other=None):
+    """The n rows of scored() of largest translational error, as printable
+    lines, with another trajectory's errors (its rows for the same
+    relations) and the two estimates' difference when given."""
     if rows_other is not None and len(rows_other) != len(rows):
         raise SystemExit("--against: the two trajectories do not match the same relations "
                          f"({len(rows)} and {len(rows_other)})")
@@ -139,31 +140,28 @@ def stats(v):
     return m, sd
 
 
+def positive_count(value):
+    try:
+        n = int(value)
+    except ValueError:
+        n = 0
+    if n < 1:
+        raise argparse.ArgumentTypeError(f"not a count: {value}")
+    return n
+
+
 def main():
-    argv = sys.argv[1:]
-    n_worst, against = None, None
-    for flag in ("--worst", "--against"):
-        if flag in argv:
-            k = argv.index(flag)
-            if k + 1 >= len(argv):
-                raise SystemExit(f"{flag} needs a value\n{__doc__}")
-            value = argv[k + 1]
-            del argv[k:k + 2]
-            if flag == "--worst":
-                try:
-                    n_worst = int(value)
-                except ValueError:
-                    raise SystemExit(f"--worst: not a count: {value}")
-                if n_worst < 1:
-                    raise SystemExit(f"--worst: not a count: {value}")
-            else:
-                against = value
-    if against is not None and n_worst is None:
-        raise SystemExit("--against goes with --worst N")
-    args = [a for a in argv if not a.startswith("--")]
-    if len(args) != 2:
-        raise SystemExit(__doc__)
-    et, er = evaluate(load_trajectory(args[0]), args[1])
+    ap = argparse.ArgumentParser(usage=__doc__, add_help=False)
+    ap.add_argument("trajectory")
+    ap.add_argument("relations")
+    ap.add_argument("--json", action="store_true")
+    ap.add_argument("--worst", type=positive_count)
+    ap.add_argument("--against")
+    a = ap.parse_args()
+    if a.against is not None and a.worst is None:
+        ap.error("--against goes with --worst N")
+    rows = scored(load_trajectory(a.trajectory), a.relations)
+    et, er = evaluate(rows)
     tm, ts = stats(et)
     rm, rs = stats([math.degrees(x) for x in er])
     t2m, t2s = stats([x * x for x in et])
@@ -172,14 +170,15 @@ def main():
            "rot_mean_deg": rm, "rot_std_deg": rs,
            "trans_sq_mean": t2m, "trans_sq_std": t2s,
            "rot_sq_mean": r2m, "rot_sq_std": r2s}
-    if "--json" in sys.argv:
+    if a.json:
         print(json.dumps(res))
     else:
         print(f"relations: {len(et)}  translational {tm:.4f} +- {ts:.4f} m  "
               f"rotational {rm:.3f} +- {rs:.3f} deg")
-    if n_worst is not None and et:
-        other = load_trajectory(against) if against is not None else None
-        for line in worst(load_trajectory(args[0]), args[1], n_worst, other):
+    if a.worst is not None and rows:
+        rows_other = (scored(load_trajectory(a.against), a.relations)
+                      if a.against is not None else None)
+        for line in worst(rows, a.worst, rows_other):
             print(line)
     if not et:
         sys.exit(3)
