@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hmt/common/config.h"
 #include "hmt/common/error.h"
 #include "sim_world.h"
 
@@ -69,6 +70,22 @@ TEST(GridRbpf, HeadingSearchRecoversFromAFalseTurnInTheOdometry) {
   // Without the search the filter keeps (some of) the false turns.
   EXPECT_GT(final_heading_error(run, off), 0.2);
   EXPECT_LT(final_heading_error(run, on), 0.05);
+}
+
+TEST(RbpfOptions, BadHeadingSearchValuesAreConfigErrorsNamingTheKey) {
+  for (const char* bad : {"heading_search_ratio = 1.5", "heading_search_ratio = -0.1",
+                          "heading_search_range = 4", "heading_search_range = -1",
+                          "heading_search_ratio = half"}) {
+    Config cfg = Config::from_string(std::string("[metric_slam]\n") + bad + "\n", "test");
+    RbpfOptions o;
+    try {
+      o.load(cfg);
+      ADD_FAILURE() << "accepted: " << bad;
+    } catch (const ConfigError& e) {
+      const std::string key = std::string(bad).substr(0, std::string(bad).find(' '));
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(GridRbpf, DeterministicWhateverTheThreadCount) {
