@@ -18,6 +18,11 @@ GzInputStream::~GzInputStream() {
   if (file_) gzclose(file_);
 }
 
+uint64_t GzInputStream::file_offset() const {
+  const z_off_t offset = gzoffset(file_);
+  return offset > 0 ? static_cast<uint64_t>(offset) : 0;
+}
+
 size_t GzInputStream::read(void* buffer, size_t count) {
   auto* out = static_cast<char*>(buffer);
   size_t done = 0;

@@ -29,6 +29,8 @@ class GzInputStream {
   size_t read(void* buffer, size_t count);
   uint64_t position() const { return position_; }
   const std::string& path() const { return path_; }
+  // How far into the file (compressed bytes, if it is) reading has got.
+  uint64_t file_offset() const;
 
   // True when no byte is left (peeks one byte and pushes it back).
   bool at_end();

@@ -6,6 +6,7 @@
 #include "hmt/common/error.h"
 #include "hmt/common/files.h"
 #include "hmt/io/log_reader.h"
+#include "hmt/io/log_stream.h"
 #include "rawlog_reader.h"
 #include "text_file.h"
 
@@ -63,16 +64,20 @@ LogFormat detect_log_format(const std::string& path) {
   return looks_like_carmen(head) ? LogFormat::kCarmen : LogFormat::kRawlog;
 }
 
-hmt::Log read_log(const std::string& path, const BagOptions& bag) {
+std::unique_ptr<LogStream> open_log(const std::string& path, const BagOptions& bag) {
   switch (detect_log_format(path)) {
     case LogFormat::kCarmen:
-      return read_carmen(path);
+      return stream_of(read_carmen(path));
     case LogFormat::kRosBag:
-      return read_bag(path, bag);
+      return stream_of(read_bag(path, bag));
     case LogFormat::kRawlog:
       break;
   }
-  return detail::read_rawlog(path, /*chosen_by_content=*/true);
+  return detail::open_rawlog(path, /*chosen_by_content=*/true);
+}
+
+hmt::Log read_log(const std::string& path, const BagOptions& bag) {
+  return drain(*open_log(path, bag));
 }
 
 }  // namespace hmt::io

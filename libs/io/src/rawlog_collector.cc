@@ -72,8 +72,14 @@ void RawlogCollector::add_move(const MoveRecord& mv) {
   if (!finite(inc))
     throw InputError(prefix() + "entry " + std::to_string(entry_) +
                      " holds a non-finite odometry increment");
+  if (source_ == Source::kReadings)
+    throw InputError(prefix() + "entry " + std::to_string(entry_) +
+                     " holds a robot movement (CActionRobotMovement2D), but " +
+                     std::to_string(steps_made_) +
+                     " scans before it took their odometry from CObservationOdometry "
+                     "readings: a file must use one or the other");
   pending_increment_ = pending_increment_ + inc;
-  any_action_ = true;
+  if (source_ == Source::kUnknown) decide(Source::kMovements);
 }
 
 void RawlogCollector::add_scan(const ScanRecord& scan) {
@@ -81,14 +87,19 @@ void RawlogCollector::add_scan(const ScanRecord& scan) {
   try {
     p.scan = to_laser_scan(scan);
   } catch (const std::invalid_argument& e) {
-    throw InputError(prefix() + "scan " + std::to_string(scans_.size()) +
+    throw InputError(prefix() + "scan " + std::to_string(scans_read_) +
                      " (entry " + std::to_string(entry_) +
                      ") is unusable: " + e.what());
   }
+  ++scans_read_;
   p.action_increment = pending_increment_;
   p.odometry = latest_odometry_;
   pending_increment_ = Pose2D();
-  scans_.push_back(std::move(p));
+  if (latest_odometry_) scan_after_reading_ = true;
+  if (source_ == Source::kUnknown)
+    held_.push_back(std::move(p));
+  else
+    make_step(p);
 }
 
 void RawlogCollector::add_odometry(const Pose2DRecord& odometry) {
@@ -98,42 +109,64 @@ void RawlogCollector::add_odometry(const Pose2DRecord& odometry) {
                      " holds a non-finite odometry pose");
   latest_odometry_ = pose;
   if (!first_odometry_) first_odometry_ = pose;
+  // A reading, a scan, a reading, and no movement so far: the
+  // observations-only layout (rawlog_collector.h).
+  if (source_ == Source::kUnknown && scan_after_reading_) decide(Source::kReadings);
+}
+
+void RawlogCollector::decide(Source source) {
+  source_ = source;
+  for (PendingScan& p : held_) make_step(p);
+  held_.clear();
+}
+
+// Observations-only files: each scan takes the latest odometry reading
+// before it in the file (no interpolation). File order rather than
+// timestamps, because logs converted from other formats can carry rounded
+// or non-monotonic clocks; MRPT's grabbers write observations in time order,
+// so for them the two agree. Scans before the first odometry reading take
+// that first reading (the robot has not been seen moving).
+void RawlogCollector::make_step(PendingScan& s) {
+  const bool movements = source_ == Source::kMovements;
+  LogStep step;
+  step.timestamp = s.scan.timestamp;
+  step.scan = std::move(s.scan);
+  const Pose2D odo = movements ? Pose2D() : s.odometry.value_or(*first_odometry_);
+  if (steps_made_ > 0) {
+    step.has_odometry = true;
+    step.odometry_increment = movements ? s.action_increment : odo - previous_odometry_;
+  }
+  previous_odometry_ = odo;
+  ++steps_made_;
+  ready_.push_back(std::move(step));
+}
+
+bool RawlogCollector::next_step(LogStep& out) {
+  if (ready_.empty()) return false;
+  out = std::move(ready_.front());
+  ready_.pop_front();
+  return true;
+}
+
+void RawlogCollector::end_of_file(size_t entries) {
+  if (scans_read_ == 0)
+    throw InputError(prefix() + "holds no 2D laser scans (" +
+                     std::to_string(entries) + " entries read)");
+  if (source_ != Source::kUnknown) return;
+  if (!first_odometry_)
+    throw InputError(prefix() + "holds " + std::to_string(scans_read_) +
+                     " laser scans but no odometry (neither "
+                     "CActionRobotMovement2D nor CObservationOdometry)");
+  decide(Source::kReadings);
 }
 
 hmt::Log RawlogCollector::finish(size_t entries) {
-  if (scans_.empty())
-    throw InputError(prefix() + "holds no 2D laser scans (" +
-                     std::to_string(entries) + " entries read)");
-  const bool use_actions = any_action_;
-  if (!use_actions && !first_odometry_)
-    throw InputError(prefix() + "holds " + std::to_string(scans_.size()) +
-                     " laser scans but no odometry (neither "
-                     "CActionRobotMovement2D nor CObservationOdometry)");
+  end_of_file(entries);
   hmt::Log log;
   log.source = path_;
-  log.steps.reserve(scans_.size());
-  // Observations-only files: each scan takes the latest odometry reading
-  // before it in the file (no interpolation). File order rather than
-  // timestamps, because logs converted from other formats can carry
-  // rounded or non-monotonic clocks; MRPT's grabbers write observations in
-  // time order, so for them the two agree. Scans before the first odometry
-  // reading take that first reading (the robot has not been seen moving).
-  Pose2D prev_odo;
-  for (size_t k = 0; k < scans_.size(); ++k) {
-    PendingScan& s = scans_[k];
-    LogStep step;
-    step.timestamp = s.scan.timestamp;
-    step.scan = std::move(s.scan);
-    const Pose2D odo =
-        use_actions ? Pose2D() : s.odometry.value_or(*first_odometry_);
-    if (k > 0) {
-      step.has_odometry = true;
-      step.odometry_increment =
-          use_actions ? s.action_increment : odo - prev_odo;
-    }
-    prev_odo = odo;
-    log.steps.push_back(std::move(step));
-  }
+  log.steps.reserve(ready_.size());
+  LogStep step;
+  while (next_step(step)) log.steps.push_back(std::move(step));
   return log;
 }
 

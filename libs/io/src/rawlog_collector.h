@@ -1,13 +1,27 @@
 // Turns the rawlog's scans, odometry readings and robot movements, in file
-// order, into the internal stream. Both odometry sources are kept until the
-// end, since which one a file uses is only known then. Shared by the native
+// order, into the internal stream, step by step. Shared by the native
 // reader and the MRPT plugin, so that both give the same log for the same
 // file.
+//
+// The odometry source: robot movements (CActionRobotMovement2D) if the file
+// holds any, else odometry readings (CObservationOdometry). A scan's step is
+// final once the source is known, and scans are held back until then:
+//  - the first robot movement decides for movements;
+//  - an odometry reading that comes after a scan which itself came after an
+//    odometry reading, with no robot movement before, decides for readings
+//    (two readings with a scan between them: the observations-only layout,
+//    so at most the scans before the second reading are held back);
+//  - the end of the file decides what is still open (readings if there were
+//    any, else the "no odometry" error).
+// A robot movement after the decision for readings is an InputError (the
+// file mixes the two layouts). The reader used to decide at the end of the
+// file, for movements whenever any appeared: on every file that does not mix
+// the layouts that way the steps are the same.
 #pragma once
 
+#include <deque>
 #include <optional>
 #include <string>
-#include <vector>
 
 #include "gz_stream.h"
 #include "hmt/common/sensor_data.h"
@@ -44,12 +58,18 @@ class RawlogCollector {
   // ... and for a null one.
   [[noreturn]] void empty_entry() const;
 
-  // The log (the scans are moved into it); throws InputError if it holds no
-  // scans, or scans but no odometry. `entries` is how many top-level
-  // objects were read.
+  // The next step that is final, into `out`; false if none is (yet).
+  bool next_step(LogStep& out);
+  // The file ended after `entries` top-level objects: the scans held back
+  // become final. Throws InputError if the file held no scans, or scans but
+  // no odometry.
+  void end_of_file(size_t entries);
+  // end_of_file(), then every step not taken yet, as a log: for readers of
+  // whole files (the MRPT plugin).
   hmt::Log finish(size_t entries);
 
  private:
+  enum class Source { kUnknown, kMovements, kReadings };
   struct PendingScan {
     hmt::LaserScan scan;
     Pose2D action_increment;         // composed actions since last scan
@@ -57,12 +77,20 @@ class RawlogCollector {
   };
 
   std::string prefix() const { return "rawlog '" + path_ + "' "; }
+  // Fixes the source; the scans held back become final.
+  void decide(Source source);
+  void make_step(PendingScan& scan);
 
   std::string path_;
   size_t entry_ = 0;
-  std::vector<PendingScan> scans_;
+  Source source_ = Source::kUnknown;
+  size_t scans_read_ = 0;
+  size_t steps_made_ = 0;
+  std::deque<PendingScan> held_;  // while the source is unknown
+  std::deque<LogStep> ready_;     // final, not taken yet
   Pose2D pending_increment_;
-  bool any_action_ = false;
+  Pose2D previous_odometry_;      // of the last step made (readings)
+  bool scan_after_reading_ = false;
   std::optional<Pose2D> latest_odometry_;
   std::optional<Pose2D> first_odometry_;
 };

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
@@ -50,45 +51,88 @@ void add_entry(const RawObject& o, RawlogCollector& collector,
   }
 }
 
-}  // namespace
+class RawlogStream : public LogStream {
+ public:
+  RawlogStream(const std::string& path, bool chosen_by_content)
+      : LogStream(path),
+        chosen_by_content_(chosen_by_content),
+        file_bytes_(std::filesystem::file_size(path)),
+        in_(path),
+        archive_(in_),
+        collector_(path) {}
 
-hmt::Log read_rawlog(const std::string& path, bool chosen_by_content) {
-  require_readable_file(path, "input log");
-  if (std::filesystem::file_size(path) == 0)
-    throw InputError("input log '" + path + "' is empty");
+  bool next(LogStep& out) override {
+    if (whole_) return whole_->next(out);
+    while (!collector_.next_step(out)) {
+      if (ended_) return false;
+      read_entry();
+      if (whole_) return whole_->next(out);
+    }
+    ++handed_out_;
+    return true;
+  }
 
-  GzInputStream in(path);
-  ArchiveReader archive(in);
-  RawlogCollector collector(path);
-  size_t entry = 0;
-  for (;; ++entry) {
-    collector.set_entry(entry);
-    if (in.at_end()) {
-      collector.check_clean_end(in);
-      break;
+  double fraction_read() const override {
+    if (whole_ || ended_ || file_bytes_ == 0) return 1.0;
+    return std::min(1.0, static_cast<double>(in_.file_offset()) / static_cast<double>(file_bytes_));
+  }
+
+ private:
+  // One top-level object, or the end of the file.
+  void read_entry() {
+    collector_.set_entry(entry_);
+    if (in_.at_end()) {
+      collector_.check_clean_end(in_);
+      collector_.end_of_file(entry_);
+      ended_ = true;
+      return;
     }
     RawObject obj;
     try {
-      obj = read_object(archive);
+      obj = read_object(archive_);
     } catch (const UnknownClassError& e) {
       // Objects carry no length, so the rest of the file cannot be read
-      // without knowing this class: MRPT reads the whole file instead.
-      return read_rawlog_with_mrpt(
-          path, chosen_by_content,
-          "a " + e.class_name + " (entry " + std::to_string(entry) + ")");
+      // without knowing this class: MRPT reads the whole file instead, and
+      // its log goes on after the steps already handed out (the same ones:
+      // the plugin collects with the same RawlogCollector).
+      whole_ = stream_of(read_rawlog_with_mrpt(
+          source(), chosen_by_content_,
+          "a " + e.class_name + " (entry " + std::to_string(entry_) + ")"));
+      LogStep skipped;
+      for (size_t k = 0; k < handed_out_; ++k) whole_->next(skipped);
+      return;
     } catch (const ArchiveError&) {
       // The clean end was handled by at_end() above, so this is damage.
-      collector.unreadable_entry(in, chosen_by_content);
+      collector_.unreadable_entry(in_, chosen_by_content_);
     }
-    add_entry(obj, collector, false);
+    add_entry(obj, collector_, false);
+    ++entry_;
   }
-  return collector.finish(entry);
+
+  const bool chosen_by_content_;
+  const uint64_t file_bytes_;
+  GzInputStream in_;
+  ArchiveReader archive_;
+  RawlogCollector collector_;
+  size_t entry_ = 0;
+  size_t handed_out_ = 0;
+  bool ended_ = false;
+  std::unique_ptr<LogStream> whole_;  // the MRPT plugin's log, once needed
+};
+
+}  // namespace
+
+std::unique_ptr<LogStream> open_rawlog(const std::string& path, bool chosen_by_content) {
+  require_readable_file(path, "input log");
+  if (std::filesystem::file_size(path) == 0)
+    throw InputError("input log '" + path + "' is empty");
+  return std::make_unique<RawlogStream>(path, chosen_by_content);
 }
 
 }  // namespace detail
 
 hmt::Log read_rawlog(const std::string& path) {
-  return detail::read_rawlog(path, false);
+  return drain(*detail::open_rawlog(path, false));
 }
 
 }  // namespace hmt::io

@@ -1,13 +1,19 @@
 // The rawlog reader with the knowledge of how it was chosen, so that
-// read_log() can say "neither a CARMEN log nor a rawlog" for unknown content.
+// open_log() can say "neither a CARMEN log nor an MRPT rawlog" for unknown
+// content.
 #pragma once
 
+#include <memory>
 #include <string>
 
-#include "hmt/common/sensor_data.h"
+#include "hmt/io/log_stream.h"
 
 namespace hmt::io::detail {
 
-hmt::Log read_rawlog(const std::string& path, bool chosen_by_content);
+// Reads the file entry by entry as the steps are taken (rawlog_collector.h
+// says which scans wait for the odometry source). A file holding a class
+// only MRPT reads is read whole by the MRPT plugin when the reader meets
+// that class, and the stream goes on from the plugin's log.
+std::unique_ptr<LogStream> open_rawlog(const std::string& path, bool chosen_by_content);
 
 }  // namespace hmt::io::detail

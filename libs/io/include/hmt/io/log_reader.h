@@ -24,6 +24,8 @@ LogFormat detect_log_format(const std::string& path);
 // internal stream; see carmen.h, rawlog.h and rosbag.h for the conventions
 // (`bag` says which topics and frames of a bag to read). Throws
 // hmt::InputError with a one-line message naming the file and the problem.
+// It is open_log() drained (log_stream.h): to read a long log step by step,
+// without holding it, use open_log().
 hmt::Log read_log(const std::string& path, const BagOptions& bag = {});
 
 }  // namespace hmt::io

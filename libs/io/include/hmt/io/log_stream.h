@@ -1,0 +1,60 @@
+// Reading a log step by step, so that a long log need not fit in memory.
+//
+// open_log() picks the reader as read_log() does (log_reader.h) and hands
+// out the same steps, in order; read_log() is open_log() drained, so each
+// format has one reader. What each reader holds while it streams:
+//  - MRPT rawlog, read natively: one entry at a time; scans are held back
+//    only until the file's odometry source is known (rawlog.h);
+//  - MRPT rawlog holding a class only MRPT reads (images, GPS...): the whole
+//    file, read by the MRPT plugin first (src/mrpt_fallback.h);
+//  - CARMEN: the whole file, since the no-return threshold, the dead beams
+//    and FLASER-or-ROBOTLASER1 are decided over all its scans (carmen.h);
+//  - ROS bag: the whole file (the odometry at each scan's stamp is
+//    interpolated between messages that may come later in the file).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "hmt/common/sensor_data.h"
+#include "hmt/io/rosbag.h"
+
+namespace hmt::io {
+
+class LogStream {
+ public:
+  virtual ~LogStream() = default;
+
+  // The next step into `out`; false at the clean end of the log. Throws
+  // hmt::InputError, as read_log() would, when the reader reaches damage or
+  // finds at the end that the log is unusable (no scans, no odometry): steps
+  // handed out before that were good.
+  virtual bool next(LogStep& out) = 0;
+
+  // The file, as read_log() names it in Log::source.
+  const std::string& source() const { return source_; }
+
+  // How much of the file has been read, in [0, 1], for progress reports
+  // (bytes of the file, compressed if it is; 1 for a log read whole).
+  virtual double fraction_read() const = 0;
+
+ protected:
+  explicit LogStream(std::string source) : source_(std::move(source)) {}
+
+ private:
+  std::string source_;
+};
+
+// Opens `path` (any format read_log() reads); throws hmt::InputError as
+// read_log() does for a missing, empty or unrecognised file. Readers that
+// need the whole file (above) read it here.
+std::unique_ptr<LogStream> open_log(const std::string& path, const BagOptions& bag = {});
+
+// Every step left in `stream`, as a log named after its source.
+hmt::Log drain(LogStream& stream);
+
+// A log already in memory as a stream (what the whole-file readers return;
+// tests feed jobs with it).
+std::unique_ptr<LogStream> stream_of(hmt::Log log);
+
+}  // namespace hmt::io
