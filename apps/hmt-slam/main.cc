@@ -18,10 +18,12 @@
 #include "hmt/common/files.h"
 #include "hmt/common/resources.h"
 #include "hmt/io/log_reader.h"
+#include "hmt/io/log_stream.h"
 #include "hmt/io/rawlog.h"
 #include "hmt/islands/islands_job.h"
 #include "hmt/pipeline/default_config.h"
 #include "hmt/pipeline/hmt_job.h"
+#include "hmt/pipeline/input_steps.h"
 #include "hmt/pipeline/metric_job.h"
 #include "hmt/pipeline/stop_signal.h"
 #include "hmt/topology/topology_file.h"
@@ -60,16 +62,26 @@ int run(const std::vector<std::string>& configs, const std::string& input,
   std::unique_ptr<hmt::topology::Session> session;
   if (!resume_map.empty())
     session = std::make_unique<hmt::topology::Session>(hmt::topology::load_session(resume_map));
-  const hmt::Log log = opt.input.select(hmt::io::read_log(opt.input.log, opt.input.bag));
-  std::fprintf(stderr, "hmt-slam: %zu scans; %d particles\n", log.steps.size(),
-               opt.rbpf.particles);
-  if (hmt::area::resolve_tau(opt.area, log))
-    std::fprintf(stderr, "hmt-slam: [area] tau = auto: %.3f from the laser's field of view\n",
-                 opt.area.partition.tau);
   if (hybrid) {
+    // The log is read as the run goes (and again after it for the
+    // keyframes' scans): memory does not grow with its length.
+    const hmt::pipeline::LogOpener open = [&] {
+      return hmt::io::open_log(opt.input.log, opt.input.bag);
+    };
+    hmt::pipeline::InputSteps steps(open(), opt.input);
+    std::fprintf(stderr, "hmt-slam: %d particles\n", opt.rbpf.particles);
+    // From the first scan that has a field of view: the steps looked at are
+    // held until the run takes them (all of them only in a log without one).
+    if (opt.area.partition.tau_from_sensor)
+      for (size_t k = 0; const hmt::LogStep* s = steps.peek(k); ++k)
+        if (hmt::area::resolve_tau(opt.area, s->scan)) {
+          std::fprintf(stderr, "hmt-slam: [area] tau = auto: %.3f from the laser's field of view\n",
+                       opt.area.partition.tau);
+          break;
+        }
     hmt::pipeline::install_stop_handlers();
-    const auto sum =
-        hmt::pipeline::run_hmt_job(opt, log, cfg, out_dir, !quiet, session.get(), checkpoint);
+    const auto sum = hmt::pipeline::run_hmt_job(opt, steps, open, cfg, out_dir, !quiet,
+                                                session.get(), checkpoint);
     std::printf("processed %zu scans in %.2f s (peak memory %.1f MB)\n", sum.scans,
                 sum.wall_time_s, sum.peak_rss_bytes / (1024.0 * 1024.0));
     std::printf("areas: %zu, arcs: %zu, loop closures accepted: %zu\n", sum.areas, sum.arcs,
@@ -81,6 +93,12 @@ int run(const std::vector<std::string>& configs, const std::string& input,
     std::printf("outputs in: %s\n", out_dir.c_str());
     return 0;
   }
+  const hmt::Log log = opt.input.select(hmt::io::read_log(opt.input.log, opt.input.bag));
+  std::fprintf(stderr, "hmt-slam: %zu scans; %d particles\n", log.steps.size(),
+               opt.rbpf.particles);
+  if (hmt::area::resolve_tau(opt.area, log))
+    std::fprintf(stderr, "hmt-slam: [area] tau = auto: %.3f from the laser's field of view\n",
+                 opt.area.partition.tau);
   const auto sum = hmt::pipeline::run_metric_job(opt, log, cfg, out_dir, !quiet);
   std::printf("processed %zu scans in %.2f s (peak memory %.1f MB)\n", sum.scans,
               sum.wall_time_s, sum.peak_rss_bytes / (1024.0 * 1024.0));

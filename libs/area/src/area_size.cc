@@ -46,15 +46,17 @@ double field_of_view(const LaserScan& scan) {
                                   static_cast<double>(scan.size()));
 }
 
-bool resolve_tau(AreaOptions& options, const Log& log) {
+bool resolve_tau(AreaOptions& options, const LaserScan& scan) {
   if (!options.partition.tau_from_sensor) return false;
-  for (const LogStep& s : log.steps) {
-    const double fov = field_of_view(s.scan);
-    if (s.scan.size() >= 2 && fov > 0.0) {
-      options.partition.tau = tau_for_field_of_view(fov);
-      return true;
-    }
-  }
+  const double fov = field_of_view(scan);
+  if (scan.size() < 2 || !(fov > 0.0)) return false;
+  options.partition.tau = tau_for_field_of_view(fov);
+  return true;
+}
+
+bool resolve_tau(AreaOptions& options, const Log& log) {
+  for (const LogStep& s : log.steps)
+    if (resolve_tau(options, s.scan)) return true;
   return false;
 }
 

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace hmt {
@@ -35,16 +36,25 @@ Progress::Progress(std::string unit, size_t total, FILE* out,
 std::string Progress::line(size_t done, const std::string& extra) const {
   const double el = seconds(Clock::now() - start_);
   const double rate = el > 0 ? done / el : 0.0;
-  const double eta = rate > 0 && total_ >= done ? (total_ - done) / rate : NAN;
+  // Of the whole: done / total, or the share given when the total is unknown.
+  const double share = total_ ? static_cast<double>(done) / static_cast<double>(total_)
+                              : std::clamp(fraction_, 0.0, 1.0);
+  double eta = rate > 0 && total_ >= done ? (total_ - done) / rate : NAN;
+  if (!total_) eta = share > 0 ? el * (1.0 - share) / share : NAN;
   char buf[256];
   std::string bar;
   if (tty_) {
     const int width = 30;
-    const int fill = total_ ? static_cast<int>(width * done / total_) : width;
+    const int fill = total_ ? static_cast<int>(width * done / total_)
+                            : static_cast<int>(width * share);
     bar = "[" + std::string(fill, '#') + std::string(width - fill, '.') + "] ";
   }
-  std::snprintf(buf, sizeof buf, "%zu/%zu %s  %.1f %s/s  ETA %s", done, total_,
-                unit_.c_str(), rate, unit_.c_str(), hms(eta).c_str());
+  if (total_)
+    std::snprintf(buf, sizeof buf, "%zu/%zu %s  %.1f %s/s  ETA %s", done, total_,
+                  unit_.c_str(), rate, unit_.c_str(), hms(eta).c_str());
+  else
+    std::snprintf(buf, sizeof buf, "%zu %s (%.0f%% of the input)  %.1f %s/s  ETA %s", done,
+                  unit_.c_str(), 100.0 * share, rate, unit_.c_str(), hms(eta).c_str());
   std::string s = bar + buf;
   if (!extra.empty()) s += "  " + extra;
   return s;

@@ -544,4 +544,13 @@ KeyframeGraph optimize_keyframe_graph(const topology::HmtMap& map,
   return graph.solve();
 }
 
+std::vector<uint64_t> keyframe_steps(const std::vector<AreaVisit>& visits,
+                                     const StepSource& steps,
+                                     const KeyframeGraphOptions& options) {
+  const PathTable table(visits, steps);
+  std::vector<uint64_t> out;
+  for (const KeyframeNode& n : select_nodes(visits, table, steps, options)) out.push_back(n.step);
+  return out;
+}
+
 }  // namespace hmt::global_map

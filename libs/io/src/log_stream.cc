@@ -16,6 +16,7 @@ class WholeLogStream : public LogStream {
     return true;
   }
   double fraction_read() const override { return 1.0; }
+  std::optional<size_t> total_steps() const override { return log_.steps.size(); }
 
  private:
   hmt::Log log_;

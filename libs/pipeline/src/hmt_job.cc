@@ -1,7 +1,10 @@
 #include "hmt/pipeline/hmt_job.h"
 
 #include <chrono>
+#include <map>
 #include <memory>
+#include <optional>
+#include <set>
 #include <thread>
 #include <cstdio>
 #include <filesystem>
@@ -27,6 +30,7 @@
 #include "hmt/pipeline/rtl_probe.h"
 #include "hmt/pipeline/stop_signal.h"
 #include "hmt/topology/topology_file.h"
+#include "kept_steps.h"
 #include "mrpt_map_outputs.h"
 
 namespace hmt::pipeline {
@@ -109,8 +113,8 @@ nlohmann::json run_summary(const framework::HmtSystem& system) {
 
 }  // namespace
 
-HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& cfg,
-                          const std::string& out_dir, bool show_progress,
+HmtJobSummary run_hmt_job(const JobOptions& opt, InputSteps& steps, const LogOpener& reopen,
+                          const Config& cfg, const std::string& out_dir, bool show_progress,
                           const topology::Session* resume_from,
                           const std::string& checkpoint_path) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -124,9 +128,11 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   const std::string config_text = cfg.effective_ini();
   write_text_atomically(out_dir + "/config_effective.ini", config_text);
 
-  size_t n = log.steps.size();
-  if (opt.input.max_steps > 0) n = std::min(n, static_cast<size_t>(opt.input.max_steps));
-  if (n == 0) throw InputError(log.source + ": the log has no scans");
+  const std::string& source = steps.source();
+  if (!steps.peek()) throw InputError(source + ": the log has no scans");
+  // The log is read as the run goes: of each step only its timestamp and
+  // odometry are kept (the trajectory's clock; the keyframe graph's motion).
+  KeptSteps kept;
   // Held by pointer: released (every particle's map) once its results are
   // out, before the global map is drawn, so the two never add up.
   hybrid::HmtOptions hmt_options = opt.hmt();
@@ -136,20 +142,28 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   const uint64_t first_step = resume_from ? resume_from->steps : 0;
   if (resume_from) system.resume(*resume_from);
   // An interrupted run: its state, and the log it was given checked step by
-  // step against the fingerprint of the part it processed.
+  // step against the fingerprint of the part it processed (those steps are
+  // read, not fed).
   size_t start = 0;
   uint32_t log_crc = 0;
+  LogStep step;
   if (!checkpoint_path.empty()) {
     // Loaded before the log is checked against it: the file is read once,
     // and a wrong log only costs the load on the way to its error.
     const checkpoint::RunIdentity id = checkpoint::load(checkpoint_path, system);
-    if (id.steps >= n)
-      throw InputError("checkpoint '" + checkpoint_path + "' holds " + std::to_string(id.steps) +
-                       " scans, but the log '" + log.source + "' has only " + std::to_string(n) +
-                       ": not the log it was written from");
-    for (size_t i = 0; i < id.steps; ++i) log_crc = checkpoint::log_fingerprint(log_crc, log.steps[i]);
+    const auto too_short = [&](size_t n) {
+      return InputError("checkpoint '" + checkpoint_path + "' holds " + std::to_string(id.steps) +
+                        " scans, but the log '" + source + "' has only " + std::to_string(n) +
+                        ": not the log it was written from");
+    };
+    for (size_t i = 0; i < id.steps; ++i) {
+      if (!steps.next(step)) throw too_short(i);
+      log_crc = checkpoint::log_fingerprint(log_crc, step);
+      kept.add(step);
+    }
+    if (!steps.peek()) throw too_short(static_cast<size_t>(id.steps));
     if (log_crc != id.log_crc)
-      throw InputError("the log '" + log.source + "' does not begin with the " +
+      throw InputError("the log '" + source + "' does not begin with the " +
                        std::to_string(id.steps) + " scans checkpoint '" + checkpoint_path +
                        "' processed: not the log it was written from");
     start = static_cast<size_t>(id.steps);
@@ -172,29 +186,34 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
     std::fprintf(stderr, "hmt-slam: [framework] mode = live: no checkpoints ([output] "
                  "checkpoint_every = %d ignored; a live run cannot be resumed)\n",
                  opt.output.checkpoint_every);
-  Progress progress("scans", n);
+  // The total when the reader knows it (a log read whole), else progress by
+  // the share of the file read.
+  const std::optional<size_t> total = steps.total();
+  Progress progress("scans", total.value_or(0));
   progress.set_enabled(show_progress);
   system.start();
   std::unique_ptr<RtlProbe> probe;
   if (opt.framework.rtl_probe_hz > 0) probe = std::make_unique<RtlProbe>(system, opt.framework.rtl_probe_hz);
   // Live mode replays the log at its own pace (scaled), as the robot sensed it.
   const bool paced = opt.framework.mode == framework::Mode::kLive && opt.framework.live_speed > 0;
+  const double first_timestamp = start > 0 ? kept.timestamps.front() : steps.peek()->timestamp;
   const auto replay_start = std::chrono::steady_clock::now();
   char extra[128];
-  for (size_t i = start; i < n; ++i) {
+  for (size_t i = start; steps.next(step); ++i) {
     if (paced)
       std::this_thread::sleep_until(
           replay_start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                             std::chrono::duration<double>((log.steps[i].timestamp -
-                                                            log.steps[0].timestamp) /
+                             std::chrono::duration<double>((step.timestamp - first_timestamp) /
                                                            opt.framework.live_speed)));
-    system.feed(log.steps[i]);
+    system.feed(step);
+    kept.add(step);
     const framework::MetricEstimate e = system.metric_layer().estimate();
     const framework::TopologySummary topo = system.topological_layer().summary();
     std::snprintf(extra, sizeof extra, "areas %zu  hypotheses %zu  closures %zu  ESS %.0f",
                   topo.best_areas, topo.hypotheses.size(), topo.closures_accepted, e.ess);
+    progress.set_fraction(steps.fraction_read());
     progress.update(e.valid && e.step >= first_step ? e.step + 1 - first_step : 0, extra);
-    log_crc = checkpoint::log_fingerprint(log_crc, log.steps[i]);
+    log_crc = checkpoint::log_fingerprint(log_crc, step);
     const int sig = stop_signal();
     if (sig != 0) {
       progress.finish();
@@ -205,10 +224,15 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
                 "--checkpoint " + checkpoint_out;
       }
       throw InterruptedError(std::string("stopped by ") + signal_name(sig) + " after scan " +
-                             std::to_string(i + 1) + " of " + std::to_string(n) + "; " + where);
+                             std::to_string(i + 1) +
+                             (total ? " of " + std::to_string(*total) : std::string()) + "; " +
+                             where);
     }
-    if (periodic && (i + 1) % opt.output.checkpoint_every == 0 && i + 1 < n) save_checkpoint(i + 1);
+    // Not after the last scan: the outputs follow at once.
+    if (periodic && (i + 1) % opt.output.checkpoint_every == 0 && steps.peek())
+      save_checkpoint(i + 1);
   }
+  const size_t n = steps.taken();
   system.finish();
   if (probe) probe->stop();
   // Metric SLAM may have been behind the feeding: every scan is done now.
@@ -227,7 +251,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   write_tsbi_events_csv(out_dir + "/tsbi_events.csv", filter.transitions());
   if (probe) write_rtl_csv(out_dir + "/rtl.csv", probe->samples());
   nlohmann::json j = run_summary(system);
-  j["input"] = log.source;
+  j["input"] = source;
   j["particles"] = opt.rbpf.particles;
   j["area_tau"] = opt.area.partition.tau;
   j["peak_map_memory_mb"] = peak_map_bytes / kMB;
@@ -269,9 +293,35 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
   }
   std::vector<global_map::AreaVisit> visits;
   for (const auto& s : segments) visits.push_back({s.area, s.first_step, s.poses});
-  const global_map::StepSource step_at = [&](uint64_t step) -> const LogStep* {
-    if (step < first_step || step - first_step >= n) return nullptr;
-    return &log.steps[static_cast<size_t>(step - first_step)];
+  // Of the steps, the graph reads only the keyframes' scans, and the MRPT
+  // outputs those of their keyframes (the graph's, or visit_keyframes() if
+  // the graph fails); which steps those are is known only now, from the
+  // final path. So the log is read a second time for just those scans,
+  // rather than holding every scan through the run. Any other step in the
+  // range is served as its kept odometry without a scan.
+  const auto in_range = [&](uint64_t s) { return s >= first_step && s - first_step < n; };
+  std::set<uint64_t> wanted;
+  if (opt.global_map.method == global_map::GlobalMapMethod::kKeyframes) {
+    const LogStep present;
+    const global_map::StepSource held = [&](uint64_t s) { return in_range(s) ? &present : nullptr; };
+    for (uint64_t s : global_map::keyframe_steps(visits, held, opt.global_map.graph))
+      wanted.insert(s);
+  }
+  if (opt.output.mrpt_maps)
+    for (const global_map::KeyframeNode& k : visit_keyframes(visits, poses, opt.global_map.graph))
+      wanted.insert(k.step);
+  const std::map<uint64_t, LogStep> scans =
+      wanted.empty() ? std::map<uint64_t, LogStep>()
+                     : read_steps_again(reopen, opt.input, first_step, n, log_crc, wanted);
+  const global_map::StepSource step_at = [&](uint64_t s) -> const LogStep* {
+    if (!in_range(s)) return nullptr;
+    const auto it = scans.find(s);
+    if (it != scans.end()) return &it->second;
+    // Valid until the next call on this thread: the graph reads a step's
+    // odometry as soon as it asks for it.
+    thread_local LogStep bare;
+    bare = kept.bare_step(static_cast<size_t>(s - first_step));
+    return &bare;
   };
 
   std::vector<Pose2D> traj;
@@ -320,7 +370,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& c
     if (opt.output.mrpt_maps) keyframes = visit_keyframes(visits, poses, opt.global_map.graph);
   }
   std::vector<io::StampedPose> stamped;
-  for (size_t i = 0; i < n; ++i) stamped.push_back({log.steps[i].timestamp, traj[i]});
+  for (size_t i = 0; i < n; ++i) stamped.push_back({kept.timestamps[i], traj[i]});
 
   sum.scans = n;
   sum.final_pose = traj.back();

@@ -12,6 +12,7 @@
 #include "hmt/common/resources.h"
 #include "hmt/grid/map_export.h"
 #include "hmt/io/tum.h"
+#include "hmt/pipeline/input_steps.h"
 #include "hmt/metric_slam/grid_rbpf.h"
 
 namespace hmt::pipeline {
@@ -35,22 +36,12 @@ void InputOptions::load(Config& cfg, const std::string& config_dir) {
 }
 
 Log InputOptions::select(Log log) const {
-  const size_t first = std::min(log.steps.size(), static_cast<size_t>(first_step));
-  log.steps.erase(log.steps.begin(), log.steps.begin() + static_cast<std::ptrdiff_t>(first));
-  if (max_steps > 0 && log.steps.size() > static_cast<size_t>(max_steps))
-    log.steps.resize(static_cast<size_t>(max_steps));
-  for (size_t k = 0; k < log.steps.size(); ++k) {
-    const Pose2D& d = log.steps[k].odometry_increment;
-    const double motion = std::hypot(d.x, d.y);
-    if (log.steps[k].has_odometry && !(motion <= max_step_motion)) {
-      char m[96];
-      std::snprintf(m, sizeof m, "%.3g m in one step, more than [input] max_step_motion = %g m",
-                    motion, max_step_motion);
-      throw InputError("log '" + log.source + "' step " + std::to_string(first + k) +
-                       ": the odometry moves the robot " + m + " (broken odometry?)");
-    }
-  }
-  return log;
+  InputSteps steps(io::stream_of(std::move(log)), *this);
+  Log out;
+  out.source = steps.source();
+  LogStep step;
+  while (steps.next(step)) out.steps.push_back(std::move(step));
+  return out;
 }
 
 void OutputOptions::load(Config& cfg) {

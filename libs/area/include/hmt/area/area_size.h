@@ -59,5 +59,9 @@ double field_of_view(const LaserScan& scan);
 // from the field of view of the first scan of `log` with at least two beams
 // and returns true; returns false (tau unchanged) otherwise.
 bool resolve_tau(AreaOptions& options, const Log& log);
+// The same for one scan: sets tau and returns true if tau_from_sensor is
+// set and `scan` has at least two beams and a field of view (a log read
+// step by step tries its scans in order until one does).
+bool resolve_tau(AreaOptions& options, const LaserScan& scan);
 
 }  // namespace hmt::area

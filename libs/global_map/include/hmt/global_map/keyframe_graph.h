@@ -121,4 +121,12 @@ KeyframeGraph optimize_keyframe_graph(const topology::HmtMap& map,
                                       int threads = 1,
                                       const std::vector<OutlierArc>& excluded = {});
 
+// The steps optimize_keyframe_graph() takes keyframes at, in path order:
+// the only steps whose scans it reads (of the others it uses the odometry
+// at most). Only whether `steps` holds a step matters here, not what it
+// holds, so a caller can find which scans to load before loading them.
+std::vector<uint64_t> keyframe_steps(const std::vector<AreaVisit>& visits,
+                                     const StepSource& steps,
+                                     const KeyframeGraphOptions& options);
+
 }  // namespace hmt::global_map

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "hmt/common/sensor_data.h"
@@ -37,6 +38,10 @@ class LogStream {
   // How much of the file has been read, in [0, 1], for progress reports
   // (bytes of the file, compressed if it is; 1 for a log read whole).
   virtual double fraction_read() const = 0;
+
+  // How many steps the log holds, when that is known before the end (a log
+  // read whole).
+  virtual std::optional<size_t> total_steps() const { return std::nullopt; }
 
  protected:
   explicit LogStream(std::string source) : source_(std::move(source)) {}

@@ -21,6 +21,7 @@
 
 #include "hmt/common/config.h"
 #include "hmt/common/sensor_data.h"
+#include "hmt/pipeline/input_steps.h"
 #include "hmt/pipeline/metric_job.h"
 #include "hmt/topology/topology_file.h"
 
@@ -38,18 +39,24 @@ struct HmtJobSummary {
   std::string report_html;  // with --report (OutputOptions::report): report/index.html
 };
 
-// With `resume_from`, continues that saved run with `log` as the log that
+// The log is read from `steps` as the run goes, so that its length does not
+// bound memory: the job keeps each step's timestamp and odometry, and after
+// the run reads the log again through `reopen` (the same selection,
+// opt.input) for the keyframes' scans the global map is drawn from
+// (src/kept_steps.h); a log that changed between the two readings is an
+// InputError.
+// With `resume_from`, continues that saved run with `steps` as the log that
 // follows it (steps numbered on; outputs cover the new steps).
 // With `checkpoint`, continues the interrupted run that wrote it
-// (hmt/checkpoint/checkpoint.h): `log` is that run's whole log, `opt` and
+// (hmt/checkpoint/checkpoint.h): `steps` is that run's whole log, `opt` and
 // `cfg` its configuration; the outputs are those of the whole run. Throws
 // InputError if the log does not begin with the steps the checkpoint holds.
 //
 // OUT/checkpoint.bin is written every [output] checkpoint_every scans and
 // when SIGINT / SIGTERM arrives (stop_signal.h; the job then throws
 // InterruptedError), and removed once the run's outputs are written.
-HmtJobSummary run_hmt_job(const JobOptions& opt, const Log& log, const Config& cfg,
-                          const std::string& out_dir, bool show_progress,
+HmtJobSummary run_hmt_job(const JobOptions& opt, InputSteps& steps, const LogOpener& reopen,
+                          const Config& cfg, const std::string& out_dir, bool show_progress,
                           const topology::Session* resume_from = nullptr,
                           const std::string& checkpoint = "");
 
