@@ -1,0 +1,103 @@
+// The job's input read step by step: [input] selection on the fly, peeking,
+// and the second reading for the keyframes' scans, which must find the log
+// the run read.
+#include <gtest/gtest.h>
+
+#include "hmt/checkpoint/checkpoint.h"
+#include "hmt/common/error.h"
+#include "hmt/pipeline/input_steps.h"
+#include "kept_steps.h"
+
+namespace hmt::pipeline {
+namespace {
+
+// `n` steps 0.5 m apart; step k's scan reads k metres.
+Log straight_log(size_t n) {
+  Log log;
+  log.source = "straight.log";
+  for (size_t k = 0; k < n; ++k) {
+    LogStep s;
+    s.timestamp = static_cast<double>(k);
+    s.has_odometry = k > 0;
+    if (k > 0) s.odometry_increment = Pose2D(0.5, 0, 0);
+    s.scan.ranges.assign(3, static_cast<float>(k));
+    s.scan.valid.assign(3, 1);
+    log.steps.push_back(s);
+  }
+  return log;
+}
+
+TEST(InputSteps, SelectsAsTheWholeLogSelectionDid) {
+  InputOptions in;
+  in.first_step = 2;
+  in.max_steps = 5;
+  InputSteps steps(io::stream_of(straight_log(10)), in);
+  EXPECT_EQ(steps.total(), 5u);
+  ASSERT_NE(steps.peek(1), nullptr);
+  EXPECT_EQ(steps.peek(1)->timestamp, 3.0);  // peeking takes nothing
+  LogStep s;
+  std::vector<double> times;
+  while (steps.next(s)) times.push_back(s.timestamp);
+  EXPECT_EQ(times, (std::vector<double>{2, 3, 4, 5, 6}));
+  EXPECT_EQ(steps.taken(), 5u);
+  EXPECT_EQ(steps.peek(), nullptr);
+  const Log selected = in.select(straight_log(10));
+  ASSERT_EQ(selected.steps.size(), 5u);
+  EXPECT_EQ(selected.steps.front().timestamp, 2.0);
+}
+
+TEST(InputSteps, BrokenOdometryNamesTheStepOfTheLog) {
+  Log log = straight_log(10);
+  log.steps[6].odometry_increment = Pose2D(30, 0, 0);
+  InputOptions in;
+  in.first_step = 1;
+  InputSteps steps(io::stream_of(log), in);
+  LogStep s;
+  try {
+    while (steps.next(s)) {
+    }
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("log 'straight.log' step 6: the odometry moves the robot 30 m"),
+              std::string::npos) << what;
+  }
+}
+
+uint32_t fingerprint(const Log& log) {
+  uint32_t crc = 0;
+  for (const LogStep& s : log.steps) crc = checkpoint::log_fingerprint(crc, s);
+  return crc;
+}
+
+TEST(ReadStepsAgain, ReturnsTheWantedStepsWhole) {
+  const Log log = straight_log(10);
+  const LogOpener open = [&] { return io::stream_of(log); };
+  // Steps numbered on from 100 (a resumed session).
+  const auto got = read_steps_again(open, InputOptions(), 100, 10, fingerprint(log), {101, 107});
+  ASSERT_EQ(got.size(), 2u);
+  EXPECT_EQ(got.at(107).scan.ranges, log.steps[7].scan.ranges);
+  EXPECT_EQ(got.at(101).timestamp, 1.0);
+}
+
+TEST(ReadStepsAgain, ALogChangedSinceTheRunIsAnError) {
+  const Log log = straight_log(10);
+  Log changed = log;
+  changed.steps[8].scan.ranges[1] = 42.0f;
+  Log shorter = log;
+  shorter.steps.resize(7);
+  for (const Log* again : {&changed, &shorter}) {
+    const LogOpener open = [&] { return io::stream_of(*again); };
+    try {
+      read_steps_again(open, InputOptions(), 0, 10, fingerprint(log), {3});
+      FAIL() << "no error";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("the log 'straight.log' changed during the run"), std::string::npos)
+          << what;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hmt::pipeline
