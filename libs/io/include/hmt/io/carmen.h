@@ -27,6 +27,8 @@
 // measurement (acapulco's beam 180 reads 50.00 in all 861 scans) and is
 // marked invalid. PARAM robot_front_laser_max is not used: it is wrong in
 // edmonton (10 m, with many real returns up to 51 m).
+// Since these decisions need every scan, the file is read whole, also by
+// open_log() (log_stream.h).
 #pragma once
 
 #include <string>

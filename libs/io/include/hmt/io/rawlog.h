@@ -8,6 +8,12 @@
 //    odometry arriving as CObservationOdometry (absolute dead-reckoning pose).
 // Every CObservation2DRangeScan becomes one hmt::LogStep, in file order;
 // other observation types (images, sonar, GPS...) are skipped.
+// Odometry comes from the robot movements if the file holds any, else from
+// the odometry observations; a file whose movements start only after two
+// odometry observations with a scan between them is refused as mixing the
+// layouts (the reader streams, and decides the source as early as that:
+// src/rawlog_collector.h). open_log() (log_stream.h) reads a rawlog entry
+// by entry, except through the MRPT plugin, which reads the whole file.
 #pragma once
 
 #include <string>

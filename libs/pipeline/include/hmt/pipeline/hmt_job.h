@@ -1,4 +1,4 @@
-// The `hmt-slam run` job: a whole log through the HMT-SLAM estimator
+// The `hmt-slam run` job: a log through the HMT-SLAM estimator
 // (hybrid::HybridFilter), then the global map, the topology and what the
 // filter did, written into the output folder:
 //   map.png, map.pgm + map.yaml   global occupancy grid (areas drawn at their
