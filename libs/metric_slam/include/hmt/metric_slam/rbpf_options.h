@@ -44,9 +44,9 @@ struct RbpfOptions {
   // (a fast turn, a slipping wheel): the match is also started from headings
   // up to heading_search_range (rad) either side, 2 x [scan_matcher]
   // angular_step apart (the hill climbing's basin), and the mode of
-  // likelihood x motion prior among the results is kept. 0 for either: off
-  // (the default; the README has what it changes on the shared logs).
-  double heading_search_ratio = 0.0;
+  // likelihood x motion prior among the results in another basin than the
+  // first match's is kept if it beats it. 0 for either: off.
+  double heading_search_ratio = 0.5;
   double heading_search_range = 0.5;
 
   double resolution = 0.05;
