@@ -59,6 +59,10 @@ struct SearchLattice {
   // distance over the block, with a hair of slack for rounding: a block
   // is only dropped when it surely holds no pose in the gate).
   bool block_meets_gate(int i0, int i1, int j0, int j1, int t) const;
+  // Whether every (x, y) of the block lies in the gate, with a hair of
+  // margin for rounding: the distance is convex, so its maximum over the
+  // block is at a corner. Such a block's sub-blocks and poses need no test.
+  bool block_inside_gate(int i0, int i1, int j0, int j1, int t) const;
   // The points' cells at heading t with the central translation.
   void cells(const std::vector<Point2D>& pts, int t, int* cx, int* cy) const;
 };
