@@ -255,6 +255,7 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
   const std::vector<size_t> follow = tsbi::probable_outcomes(ev.outcomes, opt_.tsbi.min_probability);
   double followed = 0.0;
   for (size_t k : follow) followed += ev.outcomes[k].probability;
+  const double evidence = opt_.hybrid.event_evidence ? tsbi::log_evidence(ev.outcomes, opt_.tsbi.log_eta) : 0.0;
   ev.children.assign(ev.outcomes.size(), kNoChild);
   ev.entered.assign(ev.outcomes.size(), topology::kNoArea);
   std::vector<Hypothesis> children;
@@ -266,7 +267,7 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
     Hypothesis child = fi + 1 == follow.size() ? std::move(parent) : parent;
     child.id = next_hypothesis_id_++;
     child.filter.reseed(mix_seed(opt_.rbpf.seed ^ mix_seed(child.id)));
-    child.topo.log_weight += std::log(o.probability / followed);
+    child.topo.log_weight += std::log(o.probability / followed) + evidence;
     child.area_start_step = step_;
     AreaId entered;
     if (o.is_new()) {

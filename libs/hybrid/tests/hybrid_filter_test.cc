@@ -46,6 +46,52 @@ TEST(HybridFilter, ClosesTheLoopByInference) {
   expect_ring_closed(f);
 }
 
+TEST(HybridFilter, ClosesTheLoopWhenEventsWeighTheHypotheses) {
+  const auto run = testing_ring::ring_run(7);
+  HmtOptions o = ring_options();
+  o.hybrid.event_evidence = true;
+  HybridFilter f(o);
+  for (const auto& st : run.log.steps) f.process(st);
+  expect_ring_closed(f);
+}
+
+// Two equally probable hypotheses meet an event whose outcomes explain the
+// observations e^0 and ln(9) better than an unexplored area: with the
+// evidence on, their weights become 0.1 and 0.9; off, they stay equal.
+std::vector<double> after_event_of_evidence(bool event_evidence) {
+  const auto run = testing_ring::ring_run(7);
+  topology::Session s = saved_after(run, 60);
+  s.hypotheses.push_back(s.hypotheses[0]);
+  s.hypotheses[1].id = s.hypotheses[0].id + 1;
+  s.hypotheses[0].topo.log_weight = s.hypotheses[1].topo.log_weight = std::log(0.5);
+  HmtOptions o = ring_options();
+  o.hybrid.event_evidence = event_evidence;
+  HybridFilter f(o);
+  f.resume(s);
+  area::AreaDecision d;
+  d.new_area = true;
+  const std::vector<EventInput> in = f.prepare_event(d);
+  EXPECT_EQ(in.size(), 2u);
+  std::vector<std::vector<tsbi::Outcome>> outcomes(in.size(), std::vector<tsbi::Outcome>(1));
+  for (size_t k = 0; k < in.size(); ++k) {
+    outcomes[k][0].probability = 1.0;
+    outcomes[k][0].log_f = o.tsbi.log_eta + (k == 1 ? std::log(9.0) : 0.0);
+  }
+  f.apply_event(d, in, outcomes);
+  return f.probabilities();
+}
+
+TEST(HybridFilter, EventEvidenceWeighsTheHypotheses) {
+  const std::vector<double> on = after_event_of_evidence(true);
+  ASSERT_EQ(on.size(), 2u);
+  EXPECT_NEAR(on[0], 0.1, 1e-9);
+  EXPECT_NEAR(on[1], 0.9, 1e-9);
+  const std::vector<double> off = after_event_of_evidence(false);
+  ASSERT_EQ(off.size(), 2u);
+  EXPECT_NEAR(off[0], 0.5, 1e-9);
+  EXPECT_NEAR(off[1], 0.5, 1e-9);
+}
+
 TEST(HybridFilter, HypothesesShareTheParticleBudgetWhenAsked) {
   // Two rival topologies of probability 0.9 and 0.1: the state of a run
   // resumed with min_particles 3 (of 10).

@@ -547,6 +547,13 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
   return outcomes;
 }
 
+double log_evidence(const std::vector<Outcome>& outcomes, double log_eta) {
+  if (outcomes.empty()) return 0.0;
+  std::vector<double> lf;
+  for (const Outcome& o : outcomes) lf.push_back(o.log_f);
+  return log_sum_exp(lf) - log_eta;
+}
+
 std::vector<size_t> probable_outcomes(const std::vector<Outcome>& outcomes,
                                       double min_probability) {
   std::vector<size_t> kept;

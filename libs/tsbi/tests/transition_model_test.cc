@@ -288,6 +288,20 @@ TEST(ProbableOutcomes, KeepsThoseAboveTheThresholdOrTheBest) {
   EXPECT_EQ(probable_outcomes(o, 0.95), (std::vector<size_t>{1}));
 }
 
+TEST(LogEvidence, SumsTheOutcomesFAgainstEta) {
+  std::vector<Outcome> o(1);
+  o[0].log_f = 8.0;  // "new" alone: no evidence either way
+  EXPECT_DOUBLE_EQ(log_evidence(o, 8.0), 0.0);
+  o.resize(3);
+  o[1].area = 3;
+  o[1].log_f = 8.0;
+  o[2].area = 5;
+  o[2].log_f = 20.0;
+  // log(e^8 + e^8 + e^20) - 8, computed without overflow.
+  EXPECT_NEAR(log_evidence(o, 8.0), 12.0 + std::log1p(2.0 * std::exp(-12.0)), 1e-12);
+  EXPECT_DOUBLE_EQ(log_evidence({}, 8.0), 0.0);
+}
+
 TEST(Observations, ReExpressedFromTheCurrentPose) {
   LaserScan scan;
   scan.angle_min = 0.0;

@@ -27,6 +27,16 @@ struct HybridOptions {
   // instead of 1, 2 closures accepted instead of 7) for no saving in peak
   // memory, so it is an option, not the default.
   int min_particles = 0;
+  // At a new-area event each hypothesis's weight is also multiplied by the
+  // event's evidence, sum over its outcomes of F(gamma) over eta (the
+  // optimal proposal's normaliser, 002 Eq. 6, as a Bayes factor against the
+  // unexplored area; every hypothesis weighs the same event). Off, the
+  // outcomes only share their parent's weight. On, rival topologies that
+  // explain the returns equally well no longer live side by side for the
+  // rest of the log: on the Infinite Corridor (seeds 1-8) the run takes
+  // 22-34 s instead of 21-86 s, but the position error is 0.59-1.95 m
+  // against 0.61-1.44 m, so it is an option, not the default.
+  bool event_evidence = false;
   // A keyframe for the area abstraction every this much motion.
   double keyframe_distance = 0.5;  // [m]
   double keyframe_angle = 0.5;     // [rad]

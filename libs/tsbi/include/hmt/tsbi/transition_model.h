@@ -229,6 +229,11 @@ class TransitionModel {
   uint64_t events_ = 0;
 };
 
+// The evidence of an event, log(sum over the outcomes of F(gamma) / eta):
+// how much better the hypothesis's known areas explain the observations
+// than an unexplored area alone would (0 when only "new" is left).
+double log_evidence(const std::vector<Outcome>& outcomes, double log_eta);
+
 // The outcomes worth following: indices of those with probability >=
 // min_probability (the most probable one if none is).
 std::vector<size_t> probable_outcomes(const std::vector<Outcome>& outcomes,
