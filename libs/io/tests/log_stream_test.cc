@@ -107,21 +107,6 @@ TEST(LogStream, ObservationsOnlyWithScansBeforeTheFirstOdometry) {
   EXPECT_NEAR(log.steps[5].odometry_increment.x, -1.0, 1e-9);
 }
 
-mrpt::obs::CActionCollection::Ptr make_action(double x, double y, double phi) {
-  mrpt::obs::CActionRobotMovement2D mv;
-  mv.computeFromOdometry(mrpt::poses::CPose2D(x, y, phi), {});
-  auto acts = mrpt::obs::CActionCollection::Create();
-  acts->insert(mv);
-  return acts;
-}
-
-mrpt::obs::CSensoryFrame::Ptr make_frame(
-    std::initializer_list<mrpt::obs::CObservation::Ptr> obs) {
-  auto sf = mrpt::obs::CSensoryFrame::Create();
-  for (const auto& o : obs) sf->insert(o);
-  return sf;
-}
-
 // Frames that also hold odometry readings: a movement before the second
 // reading decides for movements, as reading the whole file did.
 TEST(LogStream, FramesWithReadingsAndMovementsUseTheMovements) {

@@ -11,6 +11,7 @@
 #include <mrpt/serialization/CArchive.h>
 
 #include <cmath>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,28 @@ inline mrpt::obs::CObservationOdometry::Ptr make_odometry(double t, double x,
   o->odometry = mrpt::poses::CPose2D(x, y, phi);
   o->timestamp = mrpt::Clock::fromDouble(t);
   return o;
+}
+
+// An action holding the robot movement (x, y, phi), from odometry or, with
+// `scan_matching`, as an estimate whose PDF alone holds it.
+inline mrpt::obs::CActionCollection::Ptr make_action(double x, double y, double phi,
+                                                     bool scan_matching = false) {
+  mrpt::obs::CActionRobotMovement2D mv;
+  mv.computeFromOdometry(mrpt::poses::CPose2D(x, y, phi), {});
+  if (scan_matching) {
+    mv.estimationMethod = mrpt::obs::CActionRobotMovement2D::emScan2DMatching;
+    mv.rawOdometryIncrementReading = mrpt::poses::CPose2D(0, 0, 0);
+  }
+  auto acts = mrpt::obs::CActionCollection::Create();
+  acts->insert(mv);
+  return acts;
+}
+
+inline mrpt::obs::CSensoryFrame::Ptr make_frame(
+    std::initializer_list<mrpt::obs::CObservation::Ptr> obs) {
+  auto sf = mrpt::obs::CSensoryFrame::Create();
+  for (const auto& o : obs) sf->insert(o);
+  return sf;
 }
 
 inline void write_objects(

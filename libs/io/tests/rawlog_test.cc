@@ -111,27 +111,6 @@ TEST(RawlogConversion, ObservationsOnlyOdometry) {
   EXPECT_NEAR(log.steps[3].timestamp, 1.5, 1e-6);
 }
 
-mrpt::obs::CActionCollection::Ptr make_action(double x, double y, double phi,
-                                              bool scan_matching = false) {
-  mrpt::obs::CActionRobotMovement2D mv;
-  mv.computeFromOdometry(mrpt::poses::CPose2D(x, y, phi), {});
-  if (scan_matching) {
-    // An estimate not from odometry: only the PDF holds it.
-    mv.estimationMethod = mrpt::obs::CActionRobotMovement2D::emScan2DMatching;
-    mv.rawOdometryIncrementReading = mrpt::poses::CPose2D(0, 0, 0);
-  }
-  auto acts = mrpt::obs::CActionCollection::Create();
-  acts->insert(mv);
-  return acts;
-}
-
-mrpt::obs::CSensoryFrame::Ptr make_frame(
-    std::initializer_list<mrpt::obs::CObservation::Ptr> obs) {
-  auto sf = mrpt::obs::CSensoryFrame::Create();
-  for (const auto& o : obs) sf->insert(o);
-  return sf;
-}
-
 TEST(RawlogConversion, ActionsAndSensoryFrames) {
   const std::string p = scratch_dir() + "/sf.rawlog";
   write_objects(
