@@ -255,7 +255,8 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
   const std::vector<size_t> follow = tsbi::probable_outcomes(ev.outcomes, opt_.tsbi.min_probability);
   double followed = 0.0;
   for (size_t k : follow) followed += ev.outcomes[k].probability;
-  const double evidence = opt_.hybrid.event_evidence ? tsbi::log_evidence(ev.outcomes, opt_.tsbi.log_eta) : 0.0;
+  const double evidence =
+      opt_.hybrid.event_evidence ? tsbi::log_evidence(ev.outcomes, opt_.tsbi.log_eta) : 0.0;
   ev.children.assign(ev.outcomes.size(), kNoChild);
   ev.entered.assign(ev.outcomes.size(), topology::kNoArea);
   std::vector<Hypothesis> children;

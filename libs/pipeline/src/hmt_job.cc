@@ -188,7 +188,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, InputSteps& steps, const LogOpe
                  opt.output.checkpoint_every);
   // The total when the reader knows it (a log read whole), else progress by
   // the share of the file read.
-  const std::optional<size_t> total = steps.total();
+  const std::optional<size_t> total = steps.total_steps();
   Progress progress("scans", total.value_or(0));
   progress.set_enabled(show_progress);
   system.start();

@@ -9,7 +9,7 @@
 namespace hmt::pipeline {
 
 InputSteps::InputSteps(std::unique_ptr<io::LogStream> stream, const InputOptions& input)
-    : stream_(std::move(stream)), input_(input) {}
+    : io::LogStream(stream->source()), stream_(std::move(stream)), input_(input) {}
 
 bool InputSteps::pull() {
   LogStep step;
@@ -35,7 +35,7 @@ bool InputSteps::pull() {
   return true;
 }
 
-std::optional<size_t> InputSteps::total() const {
+std::optional<size_t> InputSteps::total_steps() const {
   const std::optional<size_t> all = stream_->total_steps();
   if (!all) return std::nullopt;
   const size_t first = static_cast<size_t>(input_.first_step);

@@ -37,11 +37,7 @@ void InputOptions::load(Config& cfg, const std::string& config_dir) {
 
 Log InputOptions::select(Log log) const {
   InputSteps steps(io::stream_of(std::move(log)), *this);
-  Log out;
-  out.source = steps.source();
-  LogStep step;
-  while (steps.next(step)) out.steps.push_back(std::move(step));
-  return out;
+  return io::drain(steps);
 }
 
 void OutputOptions::load(Config& cfg) {

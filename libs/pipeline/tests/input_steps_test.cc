@@ -32,7 +32,7 @@ TEST(InputSteps, SelectsAsTheWholeLogSelectionDid) {
   in.first_step = 2;
   in.max_steps = 5;
   InputSteps steps(io::stream_of(straight_log(10)), in);
-  EXPECT_EQ(steps.total(), 5u);
+  EXPECT_EQ(steps.total_steps(), 5u);
   ASSERT_NE(steps.peek(1), nullptr);
   EXPECT_EQ(steps.peek(1)->timestamp, 3.0);  // peeking takes nothing
   LogStep s;

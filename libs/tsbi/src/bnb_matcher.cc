@@ -16,10 +16,12 @@ Pose2D SearchLattice::pose(int i, int j, int t) const {
                 wrap_angle(center.theta + t * step_theta));
 }
 
-bool SearchLattice::in_gate(int i, int j, int t) const {
+double SearchLattice::distance2(int i, int j, int t) const {
   const Eigen::Vector3d e(i * step_xy(), j * step_xy(), t * step_theta);
-  return e.dot(information * e) <= gate;
+  return e.dot(information * e);
 }
+
+bool SearchLattice::in_gate(int i, int j, int t) const { return distance2(i, j, t) <= gate; }
 
 bool SearchLattice::block_meets_gate(int i0, int i1, int j0, int j1, int t) const {
   const Eigen::Matrix3d& M = information;
@@ -52,14 +54,10 @@ bool SearchLattice::block_meets_gate(int i0, int i1, int j0, int j1, int t) cons
 }
 
 bool SearchLattice::block_inside_gate(int i0, int i1, int j0, int j1, int t) const {
-  const double sx = step_xy();
-  const double th = t * step_theta;
   const double m = gate - 1e-9 * (1.0 + gate);
   for (int i : {i0, i1})
-    for (int j : {j0, j1}) {
-      const Eigen::Vector3d e(i * sx, j * sx, th);
-      if (!(e.dot(information * e) <= m)) return false;
-    }
+    for (int j : {j0, j1})
+      if (!(distance2(i, j, t) <= m)) return false;
   return true;
 }
 
@@ -169,7 +167,8 @@ std::vector<SearchMode> bnb_modes(const CostStack& stack, const SearchLattice& l
   SearchStats local;
   SearchStats& st = stats ? *stats : local;
   int64_t limit = query.max_cost;  // tightened once the best mode is out
-  // The bound of a block; stops at the limit (costs are never negative).
+  // Whether a block puts every point outside the stack's raster (its bound
+  // is then all_far, with no lookup).
   auto off_raster = [&](int level, int t, int i, int j) {
     const std::array<int, 4>& b = box[static_cast<size_t>(t + l.nt)];
     const std::array<int, 4>& r = raster[static_cast<size_t>(level)];
@@ -177,8 +176,9 @@ std::vector<SearchMode> bnb_modes(const CostStack& stack, const SearchLattice& l
     return !has_raster[static_cast<size_t>(level)] || b[2] + dx < r[0] || b[0] + dx > r[2] ||
            b[3] + dy < r[1] || b[1] + dy > r[3];
   };
+  // The bound of a block that overlaps the raster; stops at the limit
+  // (costs are never negative).
   auto bound = [&](int level, int t, int i, int j) {
-    if (off_raster(level, t, i, j)) return all_far;
     ++st.blocks;
     const int dx = i * s, dy = j * s;
     const size_t o = static_cast<size_t>(t + l.nt) * n;
@@ -206,14 +206,15 @@ std::vector<SearchMode> bnb_modes(const CostStack& stack, const SearchLattice& l
       return;
     }
     // Off the map and over the limit whatever the gate says: no test.
-    if (all_far > limit && off_raster(level, t, i, j)) return;
+    const bool off = off_raster(level, t, i, j);
+    if (off && all_far > limit) return;
     const int i1 = last(i, level, l.nx), j1 = last(j, level, l.ny);
     if (!inside) {
       if (!l.block_meets_gate(i, i1, j, j1, t)) return;
       if (level == 0 && !l.in_gate(i, j, t)) return;
       inside = level > 0 && l.block_inside_gate(i, i1, j, j1, t);
     }
-    const int64_t c = bound(level, t, i, j);
+    const int64_t c = off ? all_far : bound(level, t, i, j);
     if (c > limit) return;
     heap.push_back({static_cast<int32_t>(c), j, i, static_cast<int16_t>(t),
                     static_cast<int8_t>(level), inside});

@@ -53,6 +53,8 @@ struct SearchLattice {
 
   double step_xy() const { return step_cells * resolution; }
   Pose2D pose(int i, int j, int t) const;
+  // Squared Mahalanobis distance of lattice pose (i, j, t) from the mean.
+  double distance2(int i, int j, int t) const;
   bool in_gate(int i, int j, int t) const;
   // Whether some (x, y) in the block of translations [i0, i1] x [j0, j1]
   // at heading t lies in the gate (the exact minimum of the Mahalanobis
