@@ -124,9 +124,11 @@ int convert(const std::string& input, const std::string& output,
   hmt::io::BagOptions bag;
   bag.load(cfg, "input");
   cfg.check_all_used();
-  const hmt::Log log = hmt::io::read_log(input, bag);
-  hmt::io::write_rawlog(log, output, f);
-  std::printf("wrote %zu scans to %s\n", log.steps.size(), output.c_str());
+  // Streamed: each step is written as it is read, so a long log is never
+  // held whole; a log that turns out damaged leaves no output behind.
+  const auto log = hmt::io::open_log(input, bag);
+  const size_t n = hmt::io::write_rawlog(*log, output, f);
+  std::printf("wrote %zu scans to %s\n", n, output.c_str());
   return 0;
 }
 

@@ -1,6 +1,8 @@
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -37,6 +39,54 @@ double flaser_resolution(size_t n) {
   return n > 1 ? M_PI / double(n - 1) : 0.0;
 }
 
+// The two largest readings (with repeats), the first scan and the beams
+// that have read the same as in it in every scan so far: what the log-wide
+// decisions need, gathered one scan at a time.
+struct ScanStats {
+  size_t count = 0;
+  float top = 0.0f;
+  float second = 0.0f;
+  std::vector<float> first;
+  std::vector<uint8_t> constant;
+  bool one_beam_count = true;
+
+  void add(const std::vector<float>& ranges) {
+    for (float r : ranges) {
+      if (r > top) {
+        second = top;
+        top = r;
+      } else if (r > second) {
+        second = r;
+      }
+    }
+    if (count == 0) {
+      first = ranges;
+      constant.assign(ranges.size(), 1);
+    } else if (ranges.size() != first.size()) {
+      one_beam_count = false;
+    } else {
+      for (size_t i = 0; i < ranges.size(); ++i)
+        if (ranges[i] != first[i]) constant[i] = 0;
+    }
+    ++count;
+  }
+
+  // The no-return threshold (carmen.h): at least two readings within the
+  // band of the largest one make it a no-return code.
+  float max_range() const {
+    const float threshold = static_cast<float>(top - kCarmenNoReturnBand);
+    if (count > 0 && second >= threshold && threshold > 0.0f) return threshold;
+    return std::nextafter(top, std::numeric_limits<float>::infinity());
+  }
+
+  // Beams that read one value in every scan of a long enough log.
+  std::vector<uint8_t> dead_beams() const {
+    if (count < kCarmenConstantBeamMinScans || !one_beam_count) return {};
+    return constant;
+  }
+};
+
+// Parses one line at a time; the reader (below) decides what to keep.
 class CarmenParser {
  public:
   explicit CarmenParser(const std::string& path) : path_(path) {}
@@ -46,78 +96,43 @@ class CarmenParser {
                      std::to_string(line_no_) + ": " + problem);
   }
 
-  void parse(const std::string& text) {
-    std::vector<std::string_view> f;
-    size_t pos = 0;
-    while (pos < text.size()) {
-      size_t end = text.find('\n', pos);
-      if (end == std::string::npos) end = text.size();
-      ++line_no_;
-      detail::split_fields(std::string_view(text).substr(pos, end - pos), f);
-      pos = end + 1;
-      if (f.empty() || f[0][0] == '#') continue;
-      const std::string_view type = f[0];
-      if (!plausible_message_name(type))
-        fail("'" + printable(type) + "' is not a CARMEN message name");
-      if (type == "FLASER") {
-        flaser_.push_back(parse_flaser(f));
-      } else if (type == "ROBOTLASER1") {
-        robotlaser_.push_back(parse_robotlaser(f));
-      } else if (type == "PARAM") {
-        parse_param(f);
-      }
-      // ODOM, TRUEPOS, RAWLASER*, SYNC, ...: not needed.
+  enum class Kind { kOther, kFlaser, kRobotLaser };
+
+  // The next line; its scan into *scan for FLASER and ROBOTLASER1 lines
+  // (only those of `wanted` when it is not kOther: the others are skipped
+  // unparsed), a PARAM's laser offset into laser_offset().
+  Kind parse_line(std::string_view line, RawScan* scan, Kind wanted = Kind::kOther) {
+    ++line_no_;
+    if (line.find_first_not_of(" \t\r\n\v\f") != std::string_view::npos) any_text_ = true;
+    detail::split_fields(line, f_);
+    if (f_.empty() || f_[0][0] == '#') return Kind::kOther;
+    const std::string_view type = f_[0];
+    if (wanted != Kind::kOther) {
+      const Kind k = type == "FLASER"        ? Kind::kFlaser
+                     : type == "ROBOTLASER1" ? Kind::kRobotLaser
+                                             : Kind::kOther;
+      if (k != wanted) return Kind::kOther;
     }
+    if (!plausible_message_name(type))
+      fail("'" + printable(type) + "' is not a CARMEN message name");
+    if (type == "FLASER") {
+      *scan = parse_flaser(f_);
+      return Kind::kFlaser;
+    }
+    if (type == "ROBOTLASER1") {
+      *scan = parse_robotlaser(f_);
+      return Kind::kRobotLaser;
+    }
+    if (type == "PARAM") parse_param(f_);
+    // ODOM, TRUEPOS, RAWLASER*, SYNC, ...: not needed.
+    return Kind::kOther;
   }
 
-  hmt::Log finish(std::vector<Pose2D>* odometry) {
-    // Logs with both carry the same scans twice; FLASER is the classic one.
-    std::vector<RawScan>& scans = flaser_.empty() ? robotlaser_ : flaser_;
-    if (scans.empty())
-      throw InputError("CARMEN log '" + path_ +
-                       "' holds no laser scans (no FLASER or ROBOTLASER1 "
-                       "line in " + std::to_string(line_no_) + " lines)");
-    const NoReturn no_return = find_no_return(scans);
-    const std::vector<uint8_t> dead_beams = find_constant_beams(scans);
-
-    hmt::Log log;
-    log.source = path_;
-    log.steps.reserve(scans.size());
-    if (odometry) odometry->clear();
-    for (size_t k = 0; k < scans.size(); ++k) {
-      RawScan& s = scans[k];
-      if (odometry) odometry->push_back(s.odometry);
-      LogStep step;
-      step.timestamp = s.timestamp;
-      if (k > 0) {
-        step.has_odometry = true;
-        step.odometry_increment = s.odometry - scans[k - 1].odometry;
-      }
-      LaserScan& scan = step.scan;
-      scan.timestamp = s.timestamp;
-      scan.angle_min = s.angle_min;
-      scan.angle_increment = s.angle_increment;
-      scan.max_range = no_return.max_range;
-      scan.sensor_pose = s.sensor_pose.value_or(Pose2D(laser_offset_, 0, 0));
-      scan.valid.resize(s.ranges.size());
-      for (size_t i = 0; i < s.ranges.size(); ++i) {
-        const float r = s.ranges[i];
-        const bool dead = i < dead_beams.size() && dead_beams[i];
-        // Zero, and subnormal values (below 1.2e-38 m: a zero with rounding
-        // noise, not a distance a laser measures), are no readings.
-        scan.valid[i] = (std::isnormal(r) && r < no_return.max_range && !dead) ? 1 : 0;
-      }
-      scan.ranges = std::move(s.ranges);
-      log.steps.push_back(std::move(step));
-    }
-    return log;
-  }
+  size_t lines() const { return line_no_; }
+  bool any_text() const { return any_text_; }
+  double laser_offset() const { return laser_offset_; }
 
  private:
-  struct NoReturn {
-    float max_range;
-  };
-
   static bool plausible_message_name(std::string_view s) {
     if (s.empty() || !(s[0] >= 'A' && s[0] <= 'Z')) return false;
     return std::all_of(s.begin(), s.end(), [](char c) {
@@ -240,49 +255,142 @@ class CarmenParser {
     }
   }
 
-  static NoReturn find_no_return(const std::vector<RawScan>& scans) {
-    float top = 0.0f;
-    for (const auto& s : scans)
-      for (float r : s.ranges) top = std::max(top, r);
-    const float threshold = static_cast<float>(top - kCarmenNoReturnBand);
-    size_t near_top = 0;
-    for (const auto& s : scans)
-      for (float r : s.ranges) near_top += (r >= threshold) ? 1 : 0;
-    if (near_top >= 2 && threshold > 0.0f) return {threshold};
-    return {std::nextafter(top, std::numeric_limits<float>::infinity())};
-  }
-
-  static std::vector<uint8_t> find_constant_beams(
-      const std::vector<RawScan>& scans) {
-    if (scans.size() < kCarmenConstantBeamMinScans) return {};
-    const size_t n = scans[0].ranges.size();
-    std::vector<uint8_t> constant(n, 1);
-    for (const auto& s : scans) {
-      if (s.ranges.size() != n) return {};
-      for (size_t i = 0; i < n; ++i)
-        if (s.ranges[i] != scans[0].ranges[i]) constant[i] = 0;
-    }
-    return constant;
-  }
-
   std::string path_;
   size_t line_no_ = 0;
+  bool any_text_ = false;
   double laser_offset_ = 0.0;
-  std::vector<RawScan> flaser_;
-  std::vector<RawScan> robotlaser_;
+  std::vector<std::string_view> f_;
+};
+
+// Two passes over the file, so that no more than a line is held: the first
+// parses every line (so a damaged log fails here, before any step is handed
+// out) and makes the log-wide decisions; the second hands out the steps.
+class CarmenStream : public LogStream {
+ public:
+  explicit CarmenStream(const std::string& path)
+      : LogStream(path), file_bytes_(file_size(path)) {
+    CarmenParser parser(path);
+    detail::LineReader in(path, "CARMEN log");
+    ScanStats flaser, robotlaser;
+    RawScan scan;
+    std::string_view line;
+    while (in.next(&line)) {
+      const CarmenParser::Kind k = parser.parse_line(line, &scan);
+      if (k == CarmenParser::Kind::kFlaser) flaser.add(scan.ranges);
+      if (k == CarmenParser::Kind::kRobotLaser) robotlaser.add(scan.ranges);
+    }
+    if (!parser.any_text()) throw InputError("CARMEN log '" + path + "' is empty");
+    // Logs with both carry the same scans twice; FLASER is the classic one.
+    const bool use_flaser = flaser.count > 0;
+    const ScanStats& stats = use_flaser ? flaser : robotlaser;
+    if (stats.count == 0)
+      throw InputError("CARMEN log '" + path +
+                       "' holds no laser scans (no FLASER or ROBOTLASER1 "
+                       "line in " + std::to_string(parser.lines()) + " lines)");
+    kind_ = use_flaser ? CarmenParser::Kind::kFlaser : CarmenParser::Kind::kRobotLaser;
+    scans_ = stats.count;
+    max_range_ = stats.max_range();
+    dead_beams_ = stats.dead_beams();
+    laser_offset_ = parser.laser_offset();
+  }
+
+  bool next(LogStep& out) override {
+    if (!in_) {
+      if (handed_ > 0) return false;  // ended
+      in_ = std::make_unique<detail::LineReader>(source(), "CARMEN log");
+      parser_ = std::make_unique<CarmenParser>(source());
+    }
+    RawScan s;
+    std::string_view line;
+    for (;;) {
+      if (!in_->next(&line)) {
+        if (handed_ != scans_) changed();
+        in_.reset();
+        return false;
+      }
+      if (parser_->parse_line(line, &s, kind_) == kind_) break;
+    }
+    if (handed_ >= scans_) changed();
+    out = LogStep();
+    out.timestamp = s.timestamp;
+    if (handed_ > 0) {
+      out.has_odometry = true;
+      out.odometry_increment = s.odometry - odometry_;
+    }
+    odometry_ = s.odometry;
+    ++handed_;
+    LaserScan& scan = out.scan;
+    scan.timestamp = s.timestamp;
+    scan.angle_min = s.angle_min;
+    scan.angle_increment = s.angle_increment;
+    scan.max_range = max_range_;
+    scan.sensor_pose = s.sensor_pose.value_or(Pose2D(laser_offset_, 0, 0));
+    scan.valid.resize(s.ranges.size());
+    for (size_t i = 0; i < s.ranges.size(); ++i) {
+      const float r = s.ranges[i];
+      const bool dead = i < dead_beams_.size() && dead_beams_[i];
+      // Zero, and subnormal values (below 1.2e-38 m: a zero with rounding
+      // noise, not a distance a laser measures), are no readings.
+      scan.valid[i] = (std::isnormal(r) && r < max_range_ && !dead) ? 1 : 0;
+    }
+    scan.ranges = std::move(s.ranges);
+    return true;
+  }
+
+  double fraction_read() const override {
+    if (!in_) return handed_ > 0 ? 1.0 : 0.0;
+    if (file_bytes_ == 0) return 1.0;
+    return std::min(1.0, static_cast<double>(in_->file_offset()) / static_cast<double>(file_bytes_));
+  }
+  std::optional<size_t> total_steps() const override { return scans_; }
+
+  // The odometry of the step last handed out, as the log has it.
+  const Pose2D& odometry() const { return odometry_; }
+
+ private:
+  static uint64_t file_size(const std::string& path) {
+    std::error_code ec;
+    const auto n = std::filesystem::file_size(path, ec);
+    return ec ? 0 : static_cast<uint64_t>(n);
+  }
+
+  [[noreturn]] void changed() const {
+    throw InputError("CARMEN log '" + source() + "' changed while it was read (" +
+                     std::to_string(scans_) + " scans at first, now more or fewer)");
+  }
+
+  CarmenParser::Kind kind_ = CarmenParser::Kind::kFlaser;
+  size_t scans_ = 0;
+  float max_range_ = 0.0f;
+  std::vector<uint8_t> dead_beams_;
+  double laser_offset_ = 0.0;
+  uint64_t file_bytes_ = 0;
+  std::unique_ptr<detail::LineReader> in_;
+  std::unique_ptr<CarmenParser> parser_;
+  size_t handed_ = 0;
+  Pose2D odometry_;
 };
 
 }  // namespace
 
+std::unique_ptr<LogStream> open_carmen(const std::string& path) {
+  return std::make_unique<CarmenStream>(path);
+}
+
 hmt::Log read_carmen(const std::string& path) { return read_carmen(path, nullptr); }
 
 hmt::Log read_carmen(const std::string& path, std::vector<Pose2D>* odometry) {
-  const std::string text = detail::read_text_file(path, "CARMEN log");
-  if (text.find_first_not_of(" \t\r\n") == std::string::npos)
-    throw InputError("CARMEN log '" + path + "' is empty");
-  CarmenParser parser(path);
-  parser.parse(text);
-  return parser.finish(odometry);
+  CarmenStream stream(path);
+  if (odometry) odometry->clear();
+  hmt::Log log;
+  log.source = path;
+  log.steps.reserve(*stream.total_steps());
+  LogStep step;
+  while (stream.next(step)) {
+    if (odometry) odometry->push_back(stream.odometry());
+    log.steps.push_back(std::move(step));
+  }
+  return log;
 }
 
 }  // namespace hmt::io

@@ -67,7 +67,7 @@ LogFormat detect_log_format(const std::string& path) {
 std::unique_ptr<LogStream> open_log(const std::string& path, const BagOptions& bag) {
   switch (detect_log_format(path)) {
     case LogFormat::kCarmen:
-      return stream_of(read_carmen(path));
+      return open_carmen(path);
     case LogFormat::kRosBag:
       return stream_of(read_bag(path, bag));
     case LogFormat::kRawlog:

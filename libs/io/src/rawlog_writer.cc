@@ -2,12 +2,14 @@
 // class names, versions and default field values), so that MRPT's tools
 // (rbpf-slam, RawLogViewer) read them as their own; the tests compare the
 // bytes with MRPT's.
+#include <functional>
 #include <stdexcept>
 #include <string>
 
 #include "gz_stream.h"
 #include "hmt/common/error.h"
 #include "hmt/common/files.h"
+#include "hmt/io/log_stream.h"
 #include "hmt/io/rawlog.h"
 #include "mrpt_archive.h"
 #include "rawlog_scan.h"
@@ -104,10 +106,14 @@ void write_odometry(ArchiveWriter& out, const Pose2D& pose, int64_t timestamp) {
   out.end_object();
 }
 
-void write_steps(const hmt::Log& log, RawlogFormat format, ArchiveWriter& out) {
+// Writes the steps `next` hands out (nullptr after the last); returns how
+// many.
+size_t write_steps(const std::function<const LogStep*()>& next, RawlogFormat format,
+                   ArchiveWriter& out) {
   Pose2D odometry;  // accumulated, for the observations-only layout
-  for (size_t k = 0; k < log.steps.size() && out.ok(); ++k) {
-    const LogStep& step = log.steps[k];
+  size_t k = 0;
+  for (const LogStep* p = next(); p && out.ok(); p = next(), ++k) {
+    const LogStep& step = *p;
     ScanRecord scan;
     try {
       scan = detail::to_scan_record(step.scan, step.timestamp);
@@ -126,20 +132,37 @@ void write_steps(const hmt::Log& log, RawlogFormat format, ArchiveWriter& out) {
       write_scan(out, scan);
     }
   }
+  return k;
+}
+
+size_t write_steps_to(const std::string& path, RawlogFormat format,
+                      const std::function<const LogStep*()>& next) {
+  const bool gzip = ends_with(path, ".gz");
+  size_t n = 0;
+  write_file_atomically(path, [&](std::ostream& os) {
+    detail::GzOutputStream stream(os, gzip);
+    ArchiveWriter archive(stream);
+    n = write_steps(next, format, archive);
+    if (!archive.ok() || !stream.finish())
+      throw OutputError("failed writing rawlog '" + path + "'");
+  });
+  return n;
 }
 
 }  // namespace
 
 void write_rawlog(const hmt::Log& log, const std::string& path,
                   RawlogFormat format) {
-  const bool gzip = ends_with(path, ".gz");
-  write_file_atomically(path, [&](std::ostream& os) {
-    detail::GzOutputStream stream(os, gzip);
-    ArchiveWriter archive(stream);
-    write_steps(log, format, archive);
-    if (!archive.ok() || !stream.finish())
-      throw OutputError("failed writing rawlog '" + path + "'");
+  size_t k = 0;
+  write_steps_to(path, format, [&]() -> const LogStep* {
+    return k < log.steps.size() ? &log.steps[k++] : nullptr;
   });
+}
+
+size_t write_rawlog(LogStream& log, const std::string& path, RawlogFormat format) {
+  LogStep step;
+  return write_steps_to(path, format,
+                        [&]() -> const LogStep* { return log.next(step) ? &step : nullptr; });
 }
 
 }  // namespace hmt::io

@@ -2,6 +2,7 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <charconv>
 #include <memory>
 
@@ -23,32 +24,75 @@ GzHandle open_gz(const std::string& path, const std::string& what) {
   return f;
 }
 
+// Appends up to `count` bytes of `f` to `out`; false at the end of the data.
+// Throws for damaged gzip data.
+bool append_chunk(gzFile f, const std::string& path, const std::string& what, size_t count,
+                  std::string& out) {
+  const size_t had = out.size();
+  out.resize(had + count);
+  const int got = gzread(f, out.data() + had, static_cast<unsigned>(count));
+  out.resize(had + static_cast<size_t>(std::max(got, 0)));
+  if (got > 0) return true;
+  int errnum = Z_OK;
+  const char* msg = gzerror(f, &errnum);
+  if (got < 0 || (errnum != Z_OK && errnum != Z_STREAM_END)) {
+    std::string text = msg ? msg : "error";
+    // zlib prefixes the file name, which the message already has.
+    if (text.compare(0, path.size() + 2, path + ": ") == 0) text.erase(0, path.size() + 2);
+    throw InputError(what + " '" + path + "' is a damaged gzip file (zlib: " + text + ")");
+  }
+  return false;
+}
+
+constexpr size_t kChunk = 1 << 16;
+
 }  // namespace
 
 std::string read_text_file(const std::string& path, const std::string& what) {
   require_readable_file(path, what);
   GzHandle f = open_gz(path, what);
   std::string text;
-  char buf[1 << 16];
-  for (;;) {
-    const int got = gzread(f.get(), buf, sizeof(buf));
-    if (got > 0) {
-      text.append(buf, static_cast<size_t>(got));
-      continue;
-    }
-    int errnum = Z_OK;
-    const char* msg = gzerror(f.get(), &errnum);
-    if (got < 0 || (errnum != Z_OK && errnum != Z_STREAM_END)) {
-      std::string text = msg ? msg : "error";
-      // zlib prefixes the file name, which the message already has.
-      if (text.compare(0, path.size() + 2, path + ": ") == 0)
-        text.erase(0, path.size() + 2);
-      throw InputError(what + " '" + path + "' is a damaged gzip file (zlib: " +
-                       text + ")");
-    }
-    break;
+  while (append_chunk(f.get(), path, what, kChunk, text)) {
   }
   return text;
+}
+
+LineReader::LineReader(const std::string& path, const std::string& what)
+    : path_(path), what_(what) {
+  require_readable_file(path, what);
+  file_.reset(open_gz(path, what).release());
+}
+
+bool LineReader::fill() {
+  if (eof_) return false;
+  // Drop what was handed out before growing the buffer.
+  buf_.erase(0, start_);
+  start_ = 0;
+  eof_ = !append_chunk(file_.get(), path_, what_, kChunk, buf_);
+  return !eof_;
+}
+
+bool LineReader::next(std::string_view* line) {
+  size_t scanned = start_;
+  for (;;) {
+    const size_t nl = buf_.find('\n', scanned);
+    if (nl != std::string::npos) {
+      *line = std::string_view(buf_).substr(start_, nl - start_);
+      start_ = nl + 1;
+      return true;
+    }
+    scanned = buf_.size() - start_;  // offset from start_, which fill() makes 0
+    if (!fill()) break;
+  }
+  if (start_ >= buf_.size()) return false;
+  *line = std::string_view(buf_).substr(start_);
+  start_ = buf_.size();
+  return true;
+}
+
+uint64_t LineReader::file_offset() const {
+  const z_off_t offset = gzoffset(file_.get());
+  return offset > 0 ? static_cast<uint64_t>(offset) : 0;
 }
 
 std::string read_file_head(const std::string& path, size_t max_bytes) {

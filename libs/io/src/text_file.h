@@ -1,6 +1,11 @@
-// Whole-file reading for the text formats (CARMEN, TUM), gzip or plain.
+// Reading the text formats (CARMEN, TUM), gzip or plain: whole, or line by
+// line for logs too long to hold.
 #pragma once
 
+#include <zlib.h>
+
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -12,6 +17,36 @@ namespace hmt::io::detail {
 // hmt::InputError if the file is missing, not a regular file, or a damaged
 // gzip stream.
 std::string read_text_file(const std::string& path, const std::string& what);
+
+// The lines of `path` one at a time (decompressed; plain files as they are),
+// holding one buffer of the file, not the file. A last line without a
+// newline is a line. Throws hmt::InputError as read_text_file() does, for a
+// damaged gzip stream when reading reaches the damage.
+class LineReader {
+ public:
+  LineReader(const std::string& path, const std::string& what);
+
+  // The next line, without its newline, into *line (valid until the next
+  // call); false at the end of the file.
+  bool next(std::string_view* line);
+
+  // How far into the file (compressed bytes, if it is) reading has got.
+  uint64_t file_offset() const;
+
+ private:
+  struct GzCloser {
+    void operator()(gzFile_s* f) const { gzclose(f); }
+  };
+  // Appends the next chunk of the file to buf_; false at its end.
+  bool fill();
+
+  std::string path_;
+  std::string what_;
+  std::unique_ptr<gzFile_s, GzCloser> file_;
+  std::string buf_;
+  size_t start_ = 0;  // first byte of buf_ not yet handed out
+  bool eof_ = false;
+};
 
 // Up to `max_bytes` of the decompressed start of `path`, for sniffing the
 // format; never throws on damaged data (the real reader will say what is

@@ -29,16 +29,6 @@ std::string random_bytes(size_t n, unsigned seed) {
   return s;
 }
 
-// A FLASER line of `n` beams with the given readings (repeated), odometry
-// (x, 0, 0) and timestamp t.
-std::string flaser(int n, const std::string& reading, double x, double t) {
-  std::string line = "FLASER " + std::to_string(n);
-  for (int i = 0; i < n; ++i) line += " " + reading;
-  const std::string pose = std::to_string(x) + " 0 0";
-  line += " " + pose + " " + pose + " " + std::to_string(t) + " host " +
-          std::to_string(t) + "\n";
-  return line;
-}
 
 TEST(InputRejection, MissingFile) {
   const std::string p = scratch_dir() + "/nothing.log";

@@ -85,6 +85,17 @@ inline std::string gzip_bytes(const std::string& data) {
   return out;
 }
 
+// A FLASER line of `n` beams with the given readings (repeated), odometry
+// (x, 0, 0) and timestamp t.
+inline std::string flaser(int n, const std::string& reading, double x, double t) {
+  std::string line = "FLASER " + std::to_string(n);
+  for (int i = 0; i < n; ++i) line += " " + reading;
+  const std::string pose = std::to_string(x) + " 0 0";
+  line += " " + pose + " " + pose + " " + std::to_string(t) + " host " +
+          std::to_string(t) + "\n";
+  return line;
+}
+
 // Runs `fn`, expecting an hmt::InputError whose one-line message contains
 // every one of `parts`.
 inline void expect_input_error(const std::function<void()>& fn,

@@ -167,5 +167,52 @@ TEST(LogStream, TruncatedRawlogFailsWhereTheDamageIs) {
   expect_input_error([&] { read_log(cut); }, {"cut.rawlog", "is truncated"});
 }
 
+TEST(LogStream, CarmenKnowsItsLengthAndReadsLinesLongerThanABuffer) {
+  // 30 000 beams: a line of ~120 KB, longer than one read of the file; the
+  // last line has no newline.
+  std::string text = "PARAM robot_frontlaser_offset 0.1\n";
+  for (int k = 0; k < 3; ++k) text += flaser(30000, "2.5", 0.1 * k, k);
+  text.pop_back();
+  const std::string p = scratch_dir() + "/long_lines.log";
+  write_bytes(p, text);
+  const auto stream = open_log(p);
+  ASSERT_TRUE(stream->total_steps().has_value());
+  EXPECT_EQ(*stream->total_steps(), 3u);
+  EXPECT_EQ(stream->fraction_read(), 0.0);
+  LogStep step;
+  double last = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_TRUE(stream->next(step));
+    EXPECT_EQ(step.scan.ranges.size(), 30000u);
+    EXPECT_FLOAT_EQ(step.scan.ranges.back(), 2.5f);
+    EXPECT_DOUBLE_EQ(step.scan.sensor_pose.x, 0.1);
+    EXPECT_DOUBLE_EQ(step.timestamp, k);
+    EXPECT_GE(stream->fraction_read(), last);
+    last = stream->fraction_read();
+  }
+  EXPECT_FALSE(stream->next(step));
+  EXPECT_EQ(stream->fraction_read(), 1.0);
+}
+
+TEST(LogStream, CarmenDamageFailsBeforeAnyStep) {
+  // Every line is parsed when the log is opened: a bad last line stops the
+  // run before it starts, as the whole-file reader did.
+  const std::string p = scratch_dir() + "/bad_last_line.log";
+  write_bytes(p, flaser(5, "1.5", 0, 0) + flaser(5, "1.5", 0.1, 1) +
+                     flaser(5, "nan", 0.2, 2));
+  expect_input_error([&] { open_log(p); }, {p, "line 3", "range 0 is nan"});
+}
+
+TEST(LogStream, ACarmenLogChangedBetweenThePassesIsAnError) {
+  const std::string p = scratch_dir() + "/changing.log";
+  const std::string two = flaser(5, "1.5", 0, 0) + flaser(5, "1.5", 0.1, 1);
+  for (const std::string& now : {two + flaser(5, "1.5", 0.2, 2), std::string(two, 0, two.size() / 2)}) {
+    write_bytes(p, two);
+    const auto stream = open_log(p);
+    write_bytes(p, now);
+    expect_input_error([&] { drain(*stream); }, {p, "changed while it was read"});
+  }
+}
+
 }  // namespace
 }  // namespace hmt::io

@@ -27,14 +27,17 @@
 // measurement (acapulco's beam 180 reads 50.00 in all 861 scans) and is
 // marked invalid. PARAM robot_front_laser_max is not used: it is wrong in
 // edmonton (10 m, with many real returns up to 51 m).
-// Since these decisions need every scan, the file is read whole, also by
-// open_log() (log_stream.h).
+// Since these decisions need every scan, the file is read twice, a line at a
+// time (so a log of any length takes the memory of one line): once to parse
+// every line and decide, once to hand out the steps.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "hmt/common/sensor_data.h"
+#include "hmt/io/log_stream.h"
 
 namespace hmt::io {
 
@@ -45,6 +48,11 @@ constexpr size_t kCarmenConstantBeamMinScans = 50;
 // for wrong field counts, non-numeric / NaN / infinite fields, negative
 // ranges, zero-beam scans; and for a missing, empty or scan-less file.
 hmt::Log read_carmen(const std::string& path);
+
+// The same steps as a stream (log_stream.h). Every line is parsed here,
+// so the errors above are thrown before any step is handed out; a file
+// that changes between the two passes is an error naming it.
+std::unique_ptr<LogStream> open_carmen(const std::string& path);
 
 // read_carmen(), and into *odometry each step's odometry pose as the log
 // has it (absolute, in the log's odometry frame), which the steps hold only

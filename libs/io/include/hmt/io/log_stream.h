@@ -7,8 +7,9 @@
 //    only until the file's odometry source is known (rawlog.h);
 //  - MRPT rawlog holding a class only MRPT reads (images, GPS...): the whole
 //    file, read by the MRPT plugin first (src/mrpt_fallback.h);
-//  - CARMEN: the whole file, since the no-return threshold, the dead beams
-//    and FLASER-or-ROBOTLASER1 are decided over all its scans (carmen.h);
+//  - CARMEN: one line at a time, in two passes over the file (the
+//    no-return threshold, the dead beams and FLASER-or-ROBOTLASER1 are
+//    decided over all its scans in the first, carmen.h);
 //  - ROS bag: the whole file (the odometry at each scan's stamp is
 //    interpolated between messages that may come later in the file).
 #pragma once
@@ -40,7 +41,7 @@ class LogStream {
   virtual double fraction_read() const = 0;
 
   // How many steps the log holds, when that is known before the end (a log
-  // read whole).
+  // read whole, or a CARMEN log after its first pass).
   virtual std::optional<size_t> total_steps() const { return std::nullopt; }
 
  protected:

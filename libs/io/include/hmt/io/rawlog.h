@@ -71,4 +71,10 @@ enum class RawlogFormat { kActionsSensoryFrames, kObservationsOnly };
 void write_rawlog(const hmt::Log& log, const std::string& path,
                   RawlogFormat format);
 
+// The same for the steps left in `log`, read as they are written (a long
+// log is never held whole); returns how many were written. An error of the
+// stream (hmt::InputError) leaves no file behind either.
+class LogStream;  // log_stream.h
+size_t write_rawlog(LogStream& log, const std::string& path, RawlogFormat format);
+
 }  // namespace hmt::io
