@@ -62,23 +62,23 @@ int run(const std::vector<std::string>& configs, const std::string& input,
   std::unique_ptr<hmt::topology::Session> session;
   if (!resume_map.empty())
     session = std::make_unique<hmt::topology::Session>(hmt::topology::load_session(resume_map));
+  // The log is read as the run goes (and, for run, again after it for the
+  // keyframes' scans): memory does not grow with its length.
+  const hmt::pipeline::LogOpener open = [&] {
+    return hmt::io::open_log(opt.input.log, opt.input.bag);
+  };
+  hmt::pipeline::InputSteps steps(open(), opt.input);
+  std::fprintf(stderr, "hmt-slam: %d particles\n", opt.rbpf.particles);
+  // From the first scan that has a field of view: the steps looked at are
+  // held until the run takes them (all of them only in a log without one).
+  if (opt.area.partition.tau_from_sensor)
+    for (size_t k = 0; const hmt::LogStep* s = steps.peek(k); ++k)
+      if (hmt::area::resolve_tau(opt.area, s->scan)) {
+        std::fprintf(stderr, "hmt-slam: [area] tau = auto: %.3f from the laser's field of view\n",
+                     opt.area.partition.tau);
+        break;
+      }
   if (hybrid) {
-    // The log is read as the run goes (and again after it for the
-    // keyframes' scans): memory does not grow with its length.
-    const hmt::pipeline::LogOpener open = [&] {
-      return hmt::io::open_log(opt.input.log, opt.input.bag);
-    };
-    hmt::pipeline::InputSteps steps(open(), opt.input);
-    std::fprintf(stderr, "hmt-slam: %d particles\n", opt.rbpf.particles);
-    // From the first scan that has a field of view: the steps looked at are
-    // held until the run takes them (all of them only in a log without one).
-    if (opt.area.partition.tau_from_sensor)
-      for (size_t k = 0; const hmt::LogStep* s = steps.peek(k); ++k)
-        if (hmt::area::resolve_tau(opt.area, s->scan)) {
-          std::fprintf(stderr, "hmt-slam: [area] tau = auto: %.3f from the laser's field of view\n",
-                       opt.area.partition.tau);
-          break;
-        }
     hmt::pipeline::install_stop_handlers();
     const auto sum = hmt::pipeline::run_hmt_job(opt, steps, open, cfg, out_dir, !quiet,
                                                 session.get(), checkpoint);
@@ -93,13 +93,7 @@ int run(const std::vector<std::string>& configs, const std::string& input,
     std::printf("outputs in: %s\n", out_dir.c_str());
     return 0;
   }
-  const hmt::Log log = opt.input.select(hmt::io::read_log(opt.input.log, opt.input.bag));
-  std::fprintf(stderr, "hmt-slam: %zu scans; %d particles\n", log.steps.size(),
-               opt.rbpf.particles);
-  if (hmt::area::resolve_tau(opt.area, log))
-    std::fprintf(stderr, "hmt-slam: [area] tau = auto: %.3f from the laser's field of view\n",
-                 opt.area.partition.tau);
-  const auto sum = hmt::pipeline::run_metric_job(opt, log, cfg, out_dir, !quiet);
+  const auto sum = hmt::pipeline::run_metric_job(opt, steps, cfg, out_dir, !quiet);
   std::printf("processed %zu scans in %.2f s (peak memory %.1f MB)\n", sum.scans,
               sum.wall_time_s, sum.peak_rss_bytes / (1024.0 * 1024.0));
   std::printf("final pose: x=%.3f y=%.3f theta=%.4f\n", sum.final_pose.x,

@@ -93,13 +93,20 @@ TEST(StreamedLog, LongCarmenLogRunsInBoundedMemory) {
       (1024.0 * 1024.0);
   expect_bounded_run(dir, path, held_mb);
 
-  // `convert` streams too: each step is written as it is read.
+  // `metric` and `convert` stream too.
+  const AppResult m = run_app("metric --quiet --input '" + path + "' --out '" + dir +
+                                  "/metric' --set metric_slam.particles=4 --set "
+                                  "scan_matcher.beam_skip=99",
+                              dir);
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir + "/metric/summary.json"))["scans"].get<size_t>(),
+            kScans);
   const AppResult c = run_app("convert --input '" + path + "' --output '" + dir +
                                   "/standing.rawlog.gz' --format obs",
                               dir);
   ASSERT_EQ(c.exit_code, 0) << c.err;
   EXPECT_NE(c.out.find("wrote " + std::to_string(kScans) + " scans"), std::string::npos) << c.out;
-  // The largest child of this test so far (the run above, then convert).
+  // The largest child of this test so far (run, metric, convert).
   struct rusage children {};
   ASSERT_EQ(getrusage(RUSAGE_CHILDREN, &children), 0);
   EXPECT_LT(static_cast<double>(children.ru_maxrss) / 1024.0, kBoundMb);

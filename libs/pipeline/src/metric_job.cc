@@ -71,32 +71,37 @@ JobOptions load_job_options(Config& cfg, const std::string& config_dir) {
   return o;
 }
 
-JobSummary run_metric_job(const JobOptions& opt, const Log& log,
+JobSummary run_metric_job(const JobOptions& opt, InputSteps& steps,
                           const Config& cfg, const std::string& out_dir,
                           bool show_progress) {
   const auto t0 = std::chrono::steady_clock::now();
   make_directories(out_dir);
   // The configuration first: a run that fails later still says what it used.
   write_text_atomically(out_dir + "/config_effective.ini", cfg.effective_ini());
+  if (!steps.peek()) throw InputError(steps.source() + ": the log has no scans");
 
-  size_t n = log.steps.size();
-  if (opt.input.max_steps > 0) n = std::min(n, static_cast<size_t>(opt.input.max_steps));
   metric_slam::GridRbpf filter(opt.rbpf);
-  Progress progress("scans", n);
+  // The total when the reader knows it, else progress by the share read.
+  Progress progress("scans", steps.total_steps().value_or(0));
   progress.set_enabled(show_progress);
   char extra[64];
-  for (size_t i = 0; i < n; ++i) {
-    filter.process(log.steps[i]);
+  // The log is read as the filter goes; only the timestamps are kept.
+  std::vector<double> stamps;
+  LogStep step;
+  while (steps.next(step)) {
+    filter.process(step);
+    stamps.push_back(step.timestamp);
     std::snprintf(extra, sizeof extra, "ESS %.1f/%d", filter.ess(), opt.rbpf.particles);
-    progress.update(i + 1, extra);
+    progress.set_fraction(steps.fraction_read());
+    progress.update(stamps.size(), extra);
   }
   progress.finish();
+  const size_t n = stamps.size();
 
   const metric_slam::Particle& best = filter.best();
   std::vector<io::StampedPose> traj;
   traj.reserve(best.path.size());
-  for (size_t i = 0; i < best.path.size(); ++i)
-    traj.push_back({log.steps[i].timestamp, best.path[i]});
+  for (size_t i = 0; i < best.path.size(); ++i) traj.push_back({stamps[i], best.path[i]});
 
   JobSummary sum;
   sum.scans = n;
@@ -112,7 +117,7 @@ JobSummary run_metric_job(const JobOptions& opt, const Log& log,
   sum.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   sum.peak_rss_bytes = peak_rss_bytes();
   nlohmann::json j;
-  j["input"] = log.source;
+  j["input"] = steps.source();
   j["scans"] = sum.scans;
   j["particles"] = opt.rbpf.particles;
   j["wall_time_s"] = sum.wall_time_s;

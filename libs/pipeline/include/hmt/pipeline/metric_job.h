@@ -82,9 +82,13 @@ struct JobSummary {
   std::string map_png;  // path of the map image, if written
 };
 
-// Runs the filter over `log` and writes the outputs into `out_dir`.
-// `show_progress` draws progress on stderr.
-JobSummary run_metric_job(const JobOptions& opt, const Log& log,
+class InputSteps;  // input_steps.h
+
+// Runs the filter over `steps`, read as it goes (only their timestamps are
+// kept), and writes the outputs into `out_dir`. `show_progress` draws
+// progress on stderr. Throws InputError for a log without scans, and
+// whatever the reader throws.
+JobSummary run_metric_job(const JobOptions& opt, InputSteps& steps,
                           const Config& cfg, const std::string& out_dir,
                           bool show_progress);
 
