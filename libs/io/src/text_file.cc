@@ -57,8 +57,8 @@ std::string read_text_file(const std::string& path, const std::string& what) {
   return text;
 }
 
-LineReader::LineReader(const std::string& path, const std::string& what)
-    : path_(path), what_(what) {
+LineReader::LineReader(const std::string& path, const std::string& what, size_t max_line)
+    : path_(path), what_(what), max_line_(max_line) {
   require_readable_file(path, what);
   file_.reset(open_gz(path, what).release());
 }
@@ -76,15 +76,23 @@ bool LineReader::next(std::string_view* line) {
   size_t scanned = start_;
   for (;;) {
     const size_t nl = buf_.find('\n', scanned);
-    if (nl != std::string::npos) {
+    if (nl != std::string::npos && nl - start_ <= max_line_) {
+      ++line_no_;
       *line = std::string_view(buf_).substr(start_, nl - start_);
       start_ = nl + 1;
       return true;
     }
+    if (buf_.size() - start_ > max_line_)
+      throw InputError(what_ + " '" + path_ + "' line " + std::to_string(line_no_ + 1) +
+                       " is longer than " +
+                       (max_line_ % (1 << 20) == 0 ? std::to_string(max_line_ >> 20) + " MB"
+                                                   : std::to_string(max_line_) + " bytes") +
+                       ": not a text log");
     scanned = buf_.size() - start_;  // offset from start_, which fill() makes 0
     if (!fill()) break;
   }
   if (start_ >= buf_.size()) return false;
+  ++line_no_;
   *line = std::string_view(buf_).substr(start_);
   start_ = buf_.size();
   return true;

@@ -21,10 +21,14 @@ std::string read_text_file(const std::string& path, const std::string& what);
 // The lines of `path` one at a time (decompressed; plain files as they are),
 // holding one buffer of the file, not the file. A last line without a
 // newline is a line. Throws hmt::InputError as read_text_file() does, for a
-// damaged gzip stream when reading reaches the damage.
+// damaged gzip stream when reading reaches the damage, and for a line longer
+// than `max_line` bytes (a file without newlines is not a text log, and
+// would otherwise be held whole).
 class LineReader {
  public:
-  LineReader(const std::string& path, const std::string& what);
+  static constexpr size_t kDefaultMaxLine = size_t{64} << 20;
+  LineReader(const std::string& path, const std::string& what,
+             size_t max_line = kDefaultMaxLine);
 
   // The next line, without its newline, into *line (valid until the next
   // call); false at the end of the file.
@@ -42,6 +46,8 @@ class LineReader {
 
   std::string path_;
   std::string what_;
+  size_t max_line_;
+  size_t line_no_ = 0;
   std::unique_ptr<gzFile_s, GzCloser> file_;
   std::string buf_;
   size_t start_ = 0;  // first byte of buf_ not yet handed out

@@ -214,5 +214,15 @@ TEST(LogStream, ACarmenLogChangedBetweenThePassesIsAnError) {
   }
 }
 
+TEST(LogStream, ACarmenLineLongerThan64MbIsAnError) {
+  // A file without newlines is not a text log; reading it line by line
+  // would hold it whole. (A real FLASER line of 100 000 beams is ~1 MB.)
+  const std::string p = scratch_dir() + "/one_long_line.log";
+  std::string text = "FLASER 3";
+  text.resize((size_t{64} << 20) + 100, '1');
+  write_bytes(p, text);
+  expect_input_error([&] { open_log(p); }, {p, "line 1", "longer than 64 MB", "not a text log"});
+}
+
 }  // namespace
 }  // namespace hmt::io
