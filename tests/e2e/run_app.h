@@ -11,6 +11,14 @@
 
 namespace hmt::e2e {
 
+// Built with AddressSanitizer or ThreadSanitizer, whose runtimes change how
+// much memory and address space a process takes.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+inline constexpr bool kSanitizerBuild = true;
+#else
+inline constexpr bool kSanitizerBuild = false;
+#endif
+
 struct AppResult {
   int exit_code = -1;
   std::string out, err;

@@ -42,13 +42,14 @@ hmt::Log standing_robot() {
   return log;
 }
 
+// A run light enough for thousands of dense scans.
+const std::string kLight = " --set metric_slam.particles=4 --set scan_matcher.beam_skip=99";
+
 // Runs `log` (in `dir`) and checks every scan was processed within the bound.
 void expect_bounded_run(const std::string& dir, const std::string& log, double log_mb) {
   ASSERT_GT(log_mb, 4 * kBoundMb);
-  const AppResult r = run_app("run --quiet --input '" + log + "' --out '" + dir +
-                                  "/out' --set metric_slam.particles=4 --set "
-                                  "scan_matcher.beam_skip=99",
-                              dir);
+  const AppResult r =
+      run_app("run --quiet --input '" + log + "' --out '" + dir + "/out'" + kLight, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto summary = nlohmann::json::parse(slurp(dir + "/out/summary.json"));
   EXPECT_EQ(summary["scans"].get<size_t>(), kScans);
@@ -56,15 +57,9 @@ void expect_bounded_run(const std::string& dir, const std::string& log, double l
   EXPECT_LT(peak_mb, kBoundMb) << "log " << log_mb << " MB";
 }
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define SKIP_UNDER_SANITIZERS() \
-  GTEST_SKIP() << "sanitizer runtimes add their own memory: the bound is for the real build"
-#else
-#define SKIP_UNDER_SANITIZERS() (void)0
-#endif
-
 TEST(StreamedLog, LongRawlogRunsInBoundedMemory) {
-  SKIP_UNDER_SANITIZERS();
+  if (kSanitizerBuild)
+    GTEST_SKIP() << "sanitizer runtimes add their own memory: the bound is for the real build";
   const std::string dir = temp_dir("streamed_log");
   const std::string rawlog = dir + "/standing.rawlog.gz";
   hmt::io::write_rawlog(standing_robot(), rawlog, hmt::io::RawlogFormat::kObservationsOnly);
@@ -75,7 +70,8 @@ TEST(StreamedLog, LongRawlogRunsInBoundedMemory) {
 // dead beams are decided over every scan first). Held whole it took the
 // text (240 MB here) and the parsed scans (another 240 MB).
 TEST(StreamedLog, LongCarmenLogRunsInBoundedMemory) {
-  SKIP_UNDER_SANITIZERS();
+  if (kSanitizerBuild)
+    GTEST_SKIP() << "sanitizer runtimes add their own memory: the bound is for the real build";
   const std::string dir = temp_dir("streamed_carmen");
   const std::string path = dir + "/standing.log";
   {
@@ -94,10 +90,8 @@ TEST(StreamedLog, LongCarmenLogRunsInBoundedMemory) {
   expect_bounded_run(dir, path, held_mb);
 
   // `metric` and `convert` stream too.
-  const AppResult m = run_app("metric --quiet --input '" + path + "' --out '" + dir +
-                                  "/metric' --set metric_slam.particles=4 --set "
-                                  "scan_matcher.beam_skip=99",
-                              dir);
+  const AppResult m =
+      run_app("metric --quiet --input '" + path + "' --out '" + dir + "/metric'" + kLight, dir);
   ASSERT_EQ(m.exit_code, 0) << m.err;
   EXPECT_EQ(nlohmann::json::parse(slurp(dir + "/metric/summary.json"))["scans"].get<size_t>(),
             kScans);

@@ -12,11 +12,6 @@
 namespace hmt::io::detail {
 namespace {
 
-struct GzCloser {
-  void operator()(gzFile_s* f) const { gzclose(f); }
-};
-using GzHandle = std::unique_ptr<gzFile_s, GzCloser>;
-
 GzHandle open_gz(const std::string& path, const std::string& what) {
   GzHandle f(gzopen(path.c_str(), "rb"));
   if (!f) throw InputError("cannot open " + what + " '" + path + "'");
@@ -60,7 +55,7 @@ std::string read_text_file(const std::string& path, const std::string& what) {
 LineReader::LineReader(const std::string& path, const std::string& what, size_t max_line)
     : path_(path), what_(what), max_line_(max_line) {
   require_readable_file(path, what);
-  file_.reset(open_gz(path, what).release());
+  file_ = open_gz(path, what);
 }
 
 bool LineReader::fill() {

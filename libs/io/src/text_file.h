@@ -12,6 +12,12 @@
 
 namespace hmt::io::detail {
 
+// A zlib file handle that closes itself.
+struct GzCloser {
+  void operator()(gzFile_s* f) const { gzclose(f); }
+};
+using GzHandle = std::unique_ptr<gzFile_s, GzCloser>;
+
 // The decompressed content of `path` (plain files are read as they are).
 // `what` names the file in messages ("CARMEN log", "TUM file"). Throws
 // hmt::InputError if the file is missing, not a regular file, or a damaged
@@ -38,9 +44,6 @@ class LineReader {
   uint64_t file_offset() const;
 
  private:
-  struct GzCloser {
-    void operator()(gzFile_s* f) const { gzclose(f); }
-  };
   // Appends the next chunk of the file to buf_; false at its end.
   bool fill();
 
@@ -48,7 +51,7 @@ class LineReader {
   std::string what_;
   size_t max_line_;
   size_t line_no_ = 0;
-  std::unique_ptr<gzFile_s, GzCloser> file_;
+  GzHandle file_;
   std::string buf_;
   size_t start_ = 0;  // first byte of buf_ not yet handed out
   bool eof_ = false;
