@@ -1,8 +1,9 @@
 // The ROS bag plugin: opens a bag with Debian's rosbag storage library and
 // decodes the LaserScan, Odometry and TFMessage messages with the ROS
 // message headers (sensor_msgs, nav_msgs, tf2_msgs) into plain structs
-// (src/bag_contents.h). Everything else (which topic, transform chains,
-// interpolation) is done by hmt_io, free of ROS.
+// (src/bag_contents.h), in the two passes of src/rosbag_plugin_abi.h.
+// Everything else (which topic, transform chains, interpolation) is done by
+// hmt_io, free of ROS.
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
@@ -11,8 +12,11 @@
 
 #include <algorithm>
 #include <exception>
-#include <set>
+#include <map>
+#include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "bag_contents.h"
 #include "hmt/common/error.h"
@@ -55,8 +59,8 @@ BagTransform to_transform(const geometry_msgs::TransformStamped& ts) {
   return to_transform(ts.header, ts.child_frame_id, p, ts.transform.rotation);
 }
 
-BagScan to_scan(const sensor_msgs::LaserScan& m) {
-  BagScan s;
+BagScanInfo to_scan_info(const sensor_msgs::LaserScan& m) {
+  BagScanInfo s;
   s.stamp = m.header.stamp.toSec();
   s.frame_id = m.header.frame_id;
   s.angle_min = m.angle_min;
@@ -64,7 +68,7 @@ BagScan to_scan(const sensor_msgs::LaserScan& m) {
   s.angle_increment = m.angle_increment;
   s.range_min = m.range_min;
   s.range_max = m.range_max;
-  s.ranges = m.ranges;
+  s.beams = m.ranges.size();
   return s;
 }
 
@@ -81,8 +85,7 @@ boost::shared_ptr<Msg> decode(const rosbag::MessageInstance& m, size_t index) {
   }
 }
 
-BagContents read_contents(const std::string& path) {
-  rosbag::Bag bag;
+void open_bag(rosbag::Bag& bag, const std::string& path) {
   try {
     bag.open(path, rosbag::bagmode::Read);
   } catch (const rosbag::BagUnindexedException& e) {
@@ -95,47 +98,62 @@ BagContents read_contents(const std::string& path) {
   } catch (const std::exception& e) {
     throw InputError("ROS bag '" + path + "' cannot be opened: " + e.what());
   }
-  BagContents out;
-  std::set<std::string> wanted;
-  {
-    rosbag::View all(bag);
-    std::map<std::string, BagTopic> topics;
-    for (const rosbag::ConnectionInfo* c : all.getConnections()) {
-      auto [it, fresh] = topics.try_emplace(c->topic);
-      BagTopic& t = it->second;
-      if (fresh) {
-        t.name = c->topic;
-        t.datatype = c->datatype;
-        t.md5sum = c->md5sum;
-      } else if (t.datatype != c->datatype) {
-        // Two publishers of different types on one topic: never ours.
-        t.datatype += "|" + c->datatype;
-      }
-      if (decoded_type(c->datatype) && c->md5sum != decoded_md5sum(c->datatype)) {
-        t.definition_matches = false;
-        t.md5sum = c->md5sum;
-        t.expected_md5sum = decoded_md5sum(c->datatype);
-      }
+}
+
+// Every topic of the bag, and into `decoded` the names of those whose
+// messages are decoded: LaserScan and Odometry topics, /tf and /tf_static,
+// of the definitions the headers decode.
+std::vector<BagTopic> read_topics(rosbag::Bag& bag, std::vector<std::string>& decoded) {
+  rosbag::View all(bag);
+  std::map<std::string, BagTopic> topics;
+  for (const rosbag::ConnectionInfo* c : all.getConnections()) {
+    auto [it, fresh] = topics.try_emplace(c->topic);
+    BagTopic& t = it->second;
+    if (fresh) {
+      t.name = c->topic;
+      t.datatype = c->datatype;
+      t.md5sum = c->md5sum;
+    } else if (t.datatype != c->datatype) {
+      // Two publishers of different types on one topic: never ours.
+      t.datatype += "|" + c->datatype;
     }
-    for (auto& [name, t] : topics) {
-      t.messages = rosbag::View(bag, rosbag::TopicQuery(name)).size();
-      const bool tf = is_tf_type(t.datatype) && (name == kTfTopic || name == kTfStaticTopic);
-      if (t.definition_matches &&
-          (t.datatype == kLaserScanType || t.datatype == kOdometryType || tf))
-        wanted.insert(name);
-      out.topics.push_back(t);
+    if (decoded_type(c->datatype) && c->md5sum != decoded_md5sum(c->datatype)) {
+      t.definition_matches = false;
+      t.md5sum = c->md5sum;
+      t.expected_md5sum = decoded_md5sum(c->datatype);
     }
   }
-  if (wanted.empty()) return out;
-  const std::vector<std::string> wanted_list(wanted.begin(), wanted.end());
-  rosbag::View view(bag, rosbag::TopicQuery(wanted_list));
+  std::vector<BagTopic> out;
+  decoded.clear();
+  for (auto& [name, t] : topics) {
+    t.messages = rosbag::View(bag, rosbag::TopicQuery(name)).size();
+    const bool tf = is_tf_type(t.datatype) && (name == kTfTopic || name == kTfStaticTopic);
+    if (t.definition_matches &&
+        (t.datatype == kLaserScanType || t.datatype == kOdometryType || tf))
+      decoded.push_back(name);
+    out.push_back(t);
+  }
+  return out;
+}
+
+// The first pass. Every message of the decoded topics is decoded, scans
+// included (so that one that cannot be is found here, before the first
+// step), but a scan's readings are dropped as soon as they are counted.
+BagContents read_contents(const std::string& path) {
+  rosbag::Bag bag;
+  open_bag(bag, path);
+  BagContents out;
+  std::vector<std::string> decoded;
+  out.topics = read_topics(bag, decoded);
+  if (decoded.empty()) return out;
+  rosbag::View view(bag, rosbag::TopicQuery(decoded));
   std::map<std::string, size_t> counts;
   for (const rosbag::MessageInstance& m : view) {
     const std::string& topic = m.getTopic();
     const size_t index = counts[topic]++;
     const std::string& type = m.getDataType();
     if (type == kLaserScanType) {
-      out.scans[topic].push_back(to_scan(*decode<sensor_msgs::LaserScan>(m, index)));
+      out.scans[topic].push_back(to_scan_info(*decode<sensor_msgs::LaserScan>(m, index)));
     } else if (type == kOdometryType) {
       const auto o = decode<nav_msgs::Odometry>(m, index);
       out.odometry[topic].push_back(
@@ -150,25 +168,84 @@ BagContents read_contents(const std::string& path) {
   return out;
 }
 
-}  // namespace
-}  // namespace hmt::io::detail
-
-extern "C" __attribute__((visibility("default")))
-hmt::io::detail::BagReadStatus hmt_io_rosbag_read_contents_v1(
-    const char* path, hmt::io::detail::BagContents* contents, std::string* error) {
-  using hmt::io::detail::BagReadStatus;
+// Runs `read`, saying how it ended as the plugin's functions do.
+template <class Read>
+BagReadStatus guarded(const std::string& path, std::string* error, Read&& read) {
   try {
-    *contents = hmt::io::detail::read_contents(path);
+    read();
     return BagReadStatus::kOk;
-  } catch (const hmt::InputError& e) {
+  } catch (const InputError& e) {
     *error = e.what();
     return BagReadStatus::kInputError;
   } catch (const rosbag::BagException& e) {
     // Damage found while reading the chunks (the index was readable).
-    *error = std::string("ROS bag '") + path + "' is damaged: " + e.what();
+    *error = "ROS bag '" + path + "' is damaged: " + e.what();
     return BagReadStatus::kInputError;
   } catch (const std::exception& e) {
     *error = e.what();
     return BagReadStatus::kFailure;
   }
+}
+
+BagReadStatus read_contents_of(const char* path, BagContents* contents, std::string* error) {
+  return guarded(path, error, [&] { *contents = read_contents(path); });
+}
+
+}  // namespace
+
+// The second pass. rosbag's View iterates lazily: a message is read from
+// the file when it is instantiated, so one scan is held at a time. The view
+// is the first pass's, over all the decoded topics, so that the scans come
+// in its order: a view orders messages of one record time on different
+// connections by what else it holds.
+struct BagScanCursor {
+  BagScanCursor(const std::string& bag_path, const std::string& scan_topic)
+      : path(bag_path), topic(scan_topic) {
+    open_bag(bag, path);
+    std::vector<std::string> decoded;
+    read_topics(bag, decoded);
+    view = std::make_unique<rosbag::View>(bag, rosbag::TopicQuery(decoded));
+    at = view->begin();
+  }
+
+  bool next(BagScan& out) {
+    for (; at != view->end(); ++at) {
+      if (at->getTopic() != topic) continue;
+      const auto m = decode<sensor_msgs::LaserScan>(*at, index++);
+      out.info = to_scan_info(*m);
+      out.ranges = std::move(m->ranges);
+      ++at;
+      return true;
+    }
+    return false;
+  }
+
+  std::string path, topic;
+  rosbag::Bag bag;
+  std::unique_ptr<rosbag::View> view;  // refers to `bag`
+  rosbag::View::iterator at;           // refers to `view`
+  size_t index = 0;                    // of the next message on the topic
+};
+
+namespace {
+
+BagReadStatus open_scans(const char* path, const char* topic, BagScanCursor** cursor,
+                         std::string* error) {
+  return guarded(path, error, [&] { *cursor = new BagScanCursor(path, topic); });
+}
+
+BagReadStatus next_scan(BagScanCursor* cursor, BagScan* scan, bool* got, std::string* error) {
+  return guarded(cursor->path, error, [&] { *got = cursor->next(*scan); });
+}
+
+void close_scans(BagScanCursor* cursor) { delete cursor; }
+
+}  // namespace
+}  // namespace hmt::io::detail
+
+extern "C" __attribute__((visibility("default")))
+const hmt::io::detail::RosbagPlugin* hmt_io_rosbag_plugin_v2() {
+  using namespace hmt::io::detail;
+  static const RosbagPlugin plugin{&read_contents_of, &open_scans, &next_scan, &close_scans};
+  return &plugin;
 }

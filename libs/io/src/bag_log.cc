@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
+#include <map>
 #include <optional>
 
-#include "bag_frames.h"
 #include "hmt/common/error.h"
 
 namespace hmt::io::detail {
@@ -22,23 +23,42 @@ std::string join(const std::vector<std::string>& items) {
   return out.empty() ? "none" : out;
 }
 
-class BagLog {
+template <class T>
+bool same_bits(const T& a, const T& b) {
+  return std::memcmp(&a, &b, sizeof(T)) == 0;
+}
+
+// The same message, bit for bit (a NaN field is the same NaN).
+bool same_scan(const BagScanInfo& a, const BagScanInfo& b) {
+  return same_bits(a.stamp, b.stamp) && a.frame_id == b.frame_id &&
+         same_bits(a.angle_min, b.angle_min) && same_bits(a.angle_max, b.angle_max) &&
+         same_bits(a.angle_increment, b.angle_increment) &&
+         same_bits(a.range_min, b.range_min) && same_bits(a.range_max, b.range_max) &&
+         a.beams == b.beams;
+}
+
+// The decisions of the first pass, over the contents it read: the scan
+// topic, the odometry, and for each scan of that topic in the bag's order
+// whether odometry and a mounting exist at its stamp and its beams can be
+// used. The first problem found, in that order, is the error.
+class BagPlanner {
  public:
-  BagLog(const std::string& source, const BagContents& c, const BagOptions& o)
+  BagPlanner(const std::string& source, const BagContents& c, const BagOptions& o)
       : source_(source), c_(c), o_(o) {}
 
-  hmt::Log build() {
-    const std::string scan_topic = choose(kLaserScanType, o_.scan_topic, "scan_topic");
-    const std::vector<BagScan>& scans = messages(c_.scans, scan_topic);
+  std::vector<BagSteps::Scan> plan(std::string& scan_topic) {
+    scan_topic = choose(kLaserScanType, o_.scan_topic, "scan_topic");
+    const std::vector<BagScanInfo>& scans = messages(c_.scans, scan_topic);
     const FrameTree tree(c_.tf, c_.tf_static, source_);
     Odometry odom = odometry(tree);
 
-    hmt::Log log;
-    log.source = source_;
+    std::vector<BagSteps::Scan> out(scans.size());
     std::optional<Pose2D> previous;
+    size_t kept = 0;
     std::string first_skip;
     for (size_t k = 0; k < scans.size(); ++k) {
-      const BagScan& s = scans[k];
+      const BagScanInfo& s = scans[k];
+      out[k].info = s;
       std::string why;
       const auto pose = odom.pose_at(s.stamp, why);
       std::optional<Rigid> mount;
@@ -48,20 +68,21 @@ class BagLog {
           first_skip = "scan " + std::to_string(k) + ": " + why;
         continue;
       }
-      LogStep step;
-      step.timestamp = s.stamp;
+      check_beams(s, k, scan_topic, *mount);
+      BagSteps::Scan& step = out[k];
+      step.kept = true;
       if (previous) {
         step.has_odometry = true;
         step.odometry_increment = *pose - *previous;
       }
       previous = pose;
-      step.scan = beams(s, k, scan_topic, *mount);
-      log.steps.push_back(std::move(step));
+      step.mount = *mount;
+      ++kept;
     }
-    if (log.steps.empty())
+    if (kept == 0)
       fail("none of the " + std::to_string(scans.size()) + " scans on '" + scan_topic +
            "' has odometry and a laser mounting at its stamp (" + first_skip + ")");
-    return log;
+    return out;
   }
 
  private:
@@ -179,7 +200,7 @@ class BagLog {
 
   // The laser's pose in the robot frame at the scan's stamp.
   std::optional<Rigid> mounting(const FrameTree& tree, const std::string& robot,
-                                            const BagScan& s, std::string& why) const {
+                                const BagScanInfo& s, std::string& why) const {
     if (o_.has_laser_pose) {
       return Rigid{Eigen::Quaterniond(Eigen::AngleAxisd(o_.laser_pose.theta,
                                                         Eigen::Vector3d::UnitZ())),
@@ -196,10 +217,12 @@ class BagLog {
     return p;
   }
 
-  LaserScan beams(const BagScan& s, size_t k, const std::string& topic,
-                  const Rigid& mount) const {
+  // What makes a kept scan's beams unusable: all in its message's fields,
+  // so that it is found on the first pass.
+  void check_beams(const BagScanInfo& s, size_t k, const std::string& topic,
+                   const Rigid& mount) const {
     const std::string which = "scan " + std::to_string(k) + " on '" + topic + "'";
-    const size_t n = s.ranges.size();
+    const size_t n = s.beams;
     if (n == 0) fail(which + " has no beams");
     if (!std::isfinite(s.angle_min) || !std::isfinite(s.angle_increment) ||
         (n > 1 && s.angle_increment == 0.0f))
@@ -214,34 +237,6 @@ class BagLog {
       fail(which + ": its frame '" + s.frame_id + "' is tilted " +
            std::to_string(std::acos(std::min(1.0, std::abs(up))) * 180.0 / M_PI) +
            " degrees off level; a planar scan needs a level laser");
-
-    LaserScan out;
-    out.timestamp = s.stamp;
-    out.sensor_pose = planar(mount);
-    out.max_range = std::nextafter(s.range_max, std::numeric_limits<float>::infinity());
-    // Bearings as seen from above (mirrored for a laser mounted upside
-    // down), then the beams in the order that makes them increase.
-    const bool mirrored = up < 0.0;
-    const float inc = mirrored ? -s.angle_increment : s.angle_increment;
-    const float first = mirrored ? -s.angle_min : s.angle_min;
-    const bool reverse = inc < 0.0f;
-    if (reverse) {
-      out.angle_min = static_cast<float>(double(first) + double(inc) * double(n - 1));
-      out.angle_increment = -inc;
-    } else {
-      out.angle_min = first;
-      out.angle_increment = inc;
-    }
-    out.ranges.resize(n);
-    out.valid.resize(n);
-    for (size_t i = 0; i < n; ++i) {
-      const float r = s.ranges[reverse ? n - 1 - i : i];
-      // isnormal: finite, neither zero nor subnormal (not a distance).
-      const bool ok = std::isnormal(r) && r > 0.0f && r >= s.range_min && r <= s.range_max;
-      out.valid[i] = ok ? 1 : 0;
-      out.ranges[i] = std::isfinite(r) ? r : (r > 0.0f ? out.max_range : 0.0f);
-    }
-    return out;
   }
 
   const std::string& source_;
@@ -250,11 +245,67 @@ class BagLog {
   TransformSeries series_;
 };
 
+// The beams of a scan the first pass kept (check_beams() passed).
+LaserScan beams(const BagScan& scan, const Rigid& mount) {
+  const BagScanInfo& s = scan.info;
+  const size_t n = scan.ranges.size();
+  const double up = mount.up();
+  LaserScan out;
+  out.timestamp = s.stamp;
+  out.sensor_pose = planar(mount);
+  out.max_range = std::nextafter(s.range_max, std::numeric_limits<float>::infinity());
+  // Bearings as seen from above (mirrored for a laser mounted upside
+  // down), then the beams in the order that makes them increase.
+  const bool mirrored = up < 0.0;
+  const float inc = mirrored ? -s.angle_increment : s.angle_increment;
+  const float first = mirrored ? -s.angle_min : s.angle_min;
+  const bool reverse = inc < 0.0f;
+  if (reverse) {
+    out.angle_min = static_cast<float>(double(first) + double(inc) * double(n - 1));
+    out.angle_increment = -inc;
+  } else {
+    out.angle_min = first;
+    out.angle_increment = inc;
+  }
+  out.ranges.resize(n);
+  out.valid.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const float r = scan.ranges[reverse ? n - 1 - i : i];
+    // isnormal: finite, neither zero nor subnormal (not a distance).
+    const bool ok = std::isnormal(r) && r > 0.0f && r >= s.range_min && r <= s.range_max;
+    out.valid[i] = ok ? 1 : 0;
+    out.ranges[i] = std::isfinite(r) ? r : (r > 0.0f ? out.max_range : 0.0f);
+  }
+  return out;
+}
+
 }  // namespace
 
-hmt::Log bag_to_log(const std::string& source, const BagContents& contents,
-                    const BagOptions& options) {
-  return BagLog(source, contents, options).build();
+BagSteps::BagSteps(const std::string& source, const BagContents& contents,
+                   const BagOptions& options)
+    : source_(source) {
+  scans_ = BagPlanner(source, contents, options).plan(scan_topic_);
+  steps_ = static_cast<size_t>(
+      std::count_if(scans_.begin(), scans_.end(), [](const Scan& s) { return s.kept; }));
+}
+
+bool BagSteps::step(size_t k, const BagScan& scan, LogStep& out) const {
+  if (k >= scans_.size())
+    changed(std::to_string(scans_.size()) + " scans on '" + scan_topic_ + "' at first, more then");
+  if (!same_scan(scan.info, scans_[k].info) || scan.ranges.size() != scan.info.beams)
+    changed("scan " + std::to_string(k) + " on '" + scan_topic_ + "' is not the one first read");
+  const Scan& s = scans_[k];
+  if (!s.kept) return false;
+  out = LogStep();
+  out.timestamp = s.info.stamp;
+  out.has_odometry = s.has_odometry;
+  out.odometry_increment = s.odometry_increment;
+  out.scan = beams(scan, s.mount);
+  return true;
+}
+
+void BagSteps::changed(const std::string& how) const {
+  throw InputError("ROS bag '" + source_ + "' changed while it was read (" + how + ")");
 }
 
 }  // namespace hmt::io::detail

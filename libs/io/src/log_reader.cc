@@ -8,6 +8,7 @@
 #include "hmt/io/log_reader.h"
 #include "hmt/io/log_stream.h"
 #include "rawlog_reader.h"
+#include "rosbag_reader.h"
 #include "text_file.h"
 
 namespace hmt::io {
@@ -69,7 +70,7 @@ std::unique_ptr<LogStream> open_log(const std::string& path, const BagOptions& b
     case LogFormat::kCarmen:
       return open_carmen(path);
     case LogFormat::kRosBag:
-      return stream_of(read_bag(path, bag));
+      return detail::open_bag(path, bag);
     case LogFormat::kRawlog:
       break;
   }

@@ -1,8 +1,9 @@
-// The one function the ROS bag plugin (libhmt_io_rosbag.so, built from
-// libs/io/plugin/rosbag_reader.cc) exports, looked up with dlsym by
-// rosbag_reader.cc. Built with the rest of the project, so C++ types cross;
+// What the ROS bag plugin (libhmt_io_rosbag.so, built from
+// libs/io/plugin/rosbag_reader.cc) exports: one function, looked up with
+// dlsym by rosbag_reader.cc, that returns the plugin's functions for the two
+// passes over a bag. Built with the rest of the project, so C++ types cross;
 // the version in the symbol's name keeps an out-of-date plugin from being
-// used.
+// used. Exceptions do not cross: each function says how it ended.
 #pragma once
 
 #include <string>
@@ -15,11 +16,28 @@ namespace hmt::io::detail {
 // message); kFailure: something else failed (`error` says what).
 enum class BagReadStatus : int { kOk = 0, kInputError = 1, kFailure = 2 };
 
-using ReadBagContentsFn = BagReadStatus (*)(const char* path,
-                                            BagContents* contents,
-                                            std::string* error);
+// The second pass over a bag: one topic's messages in the bag's order.
+// Defined by the plugin; only pointers to it cross.
+struct BagScanCursor;
 
-constexpr const char* kReadBagContentsSymbol = "hmt_io_rosbag_read_contents_v1";
+struct RosbagPlugin {
+  // The first pass: every topic, odometry message and transform, and the
+  // LaserScan messages of every topic without their readings.
+  BagReadStatus (*read_contents)(const char* path, BagContents* contents, std::string* error);
+  // The second pass over `topic`, a LaserScan topic: the messages are read
+  // and decoded one at a time, as next_scan() asks for them.
+  BagReadStatus (*open_scans)(const char* path, const char* topic, BagScanCursor** cursor,
+                              std::string* error);
+  // The next message into *scan and *got true; *got false past the last.
+  BagReadStatus (*next_scan)(BagScanCursor* cursor, BagScan* scan, bool* got,
+                             std::string* error);
+  // Closes the bag and frees the cursor.
+  void (*close_scans)(BagScanCursor* cursor);
+};
+
+using GetRosbagPluginFn = const RosbagPlugin* (*)();
+
+constexpr const char* kRosbagPluginSymbol = "hmt_io_rosbag_plugin_v2";
 constexpr const char* kRosbagPluginFileName = "libhmt_io_rosbag.so";
 constexpr const char* kRosbagPluginEnv = "HMT_IO_ROSBAG_PLUGIN";
 

@@ -1,5 +1,6 @@
 // The ROS-free part of the bag reader: transform chains and their
-// interpolation, on transforms built in memory.
+// interpolation, and the steps decided on a bag's first pass, on contents
+// built in memory.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -99,6 +100,20 @@ TEST(BagFrames, RejectsWhatIsNotATree) {
   cycle.lookup("a", "c", 0.0, why);
 }
 
+BagScanInfo scan_info(double stamp, const std::string& frame = "laser", size_t beams = 2) {
+  BagScanInfo s;
+  s.stamp = stamp;
+  s.frame_id = frame;
+  s.angle_increment = 0.1f;
+  s.range_max = 5.0f;
+  s.beams = beams;
+  return s;
+}
+
+BagScan scan(const BagScanInfo& info) {
+  return {info, std::vector<float>(info.beams, 1.0f)};
+}
+
 TEST(BagLog, OdometryTopicChildFrameIsTheRobotFrame) {
   // Odometry of base_footprint; the laser is mounted on base_link, 0.1 m
   // ahead of the footprint.
@@ -108,16 +123,65 @@ TEST(BagLog, OdometryTopicChildFrameIsTheRobotFrame) {
                          tf(1.0, "odom", "base_footprint", 1, 0, 0)};
   c.tf_static = {tf(0, "base_footprint", "base_link", 0.1, 0, 0),
                  tf(0, "base_link", "laser", 0.2, 0, 0)};
-  BagScan s;
-  s.stamp = 0.5;
-  s.frame_id = "laser";
-  s.angle_increment = 0.1f;
-  s.range_max = 5.0f;
-  s.ranges = {1.0f, 2.0f};
-  c.scans["/scan"] = {s};
-  const Log log = bag_to_log("b", c, BagOptions{});
-  ASSERT_EQ(log.steps.size(), 1u);
-  EXPECT_NEAR(log.steps[0].scan.sensor_pose.x, 0.3, 1e-12);
+  c.scans["/scan"] = {scan_info(0.5)};
+  const BagSteps steps("b", c, BagOptions{});
+  ASSERT_EQ(steps.steps(), 1u);
+  LogStep step;
+  ASSERT_TRUE(steps.step(0, scan(c.scans["/scan"][0]), step));
+  EXPECT_NEAR(step.scan.sensor_pose.x, 0.3, 1e-12);
+}
+
+// Every decision is made on the first pass's contents, which hold no
+// readings: which scans are steps, and whether their beams can be used.
+TEST(BagLog, StepsAreDecidedBeforeTheReadings) {
+  BagContents c;
+  c.topics = {{"/odom", kOdometryType, "", true, "", 2}, {"/scan", kLaserScanType, "", true, "", 4}};
+  c.odometry["/odom"] = {tf(1.0, "odom", "base_link", 0, 0, 0),
+                         tf(3.0, "odom", "base_link", 2, 0, 0)};
+  c.tf_static = {tf(0, "base_link", "laser", 0.2, 0, 0)};
+  // One before the odometry (left out, so its lack of beams is no error),
+  // two steps, one after the odometry (left out).
+  c.scans["/scan"] = {scan_info(0.5, "laser", 0), scan_info(1.5), scan_info(2.5),
+                      scan_info(3.5)};
+  const BagSteps steps("b.bag", c, BagOptions{});
+  EXPECT_EQ(steps.scan_topic(), "/scan");
+  EXPECT_EQ(steps.messages(), 4u);
+  EXPECT_EQ(steps.steps(), 2u);
+  const std::vector<BagScanInfo>& infos = c.scans["/scan"];
+  LogStep step;
+  EXPECT_FALSE(steps.step(0, scan(infos[0]), step));
+  ASSERT_TRUE(steps.step(1, scan(infos[1]), step));
+  EXPECT_FALSE(step.has_odometry);
+  EXPECT_EQ(step.scan.ranges.size(), 2u);
+  ASSERT_TRUE(steps.step(2, scan(infos[2]), step));
+  EXPECT_TRUE(step.has_odometry);
+  EXPECT_NEAR(step.odometry_increment.x, 1.0, 1e-12);
+  EXPECT_FALSE(steps.step(3, scan(infos[3]), step));
+
+  // A message other than the one first read: the bag changed.
+  for (const BagScan& other : {scan(scan_info(1.25)), scan(scan_info(1.5, "laser", 3)),
+                               BagScan{infos[1], {1.0f}}}) {
+    try {
+      steps.step(1, other, step);
+      ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind("ROS bag 'b.bag' changed while it was read (scan 1 on '/scan'", 0), 0u)
+          << what;
+    }
+  }
+  EXPECT_THROW(steps.step(4, scan(infos[3]), step), InputError);
+
+  // A step's unusable beams are found before its readings are read, the
+  // first one in the bag's order.
+  c.scans["/scan"][2].range_max = -1.0f;
+  c.scans["/scan"][1].beams = 0;
+  try {
+    BagSteps("b.bag", c, BagOptions{});
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "ROS bag 'b.bag': scan 1 on '/scan' has no beams");
+  }
 }
 
 }  // namespace

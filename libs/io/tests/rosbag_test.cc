@@ -12,11 +12,14 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
+#include <optional>
 
 #include "hmt/io/bag_writer.h"
 #include "hmt/io/carmen.h"
 #include "hmt/io/log_reader.h"
+#include "hmt/io/log_stream.h"
 #include "hmt/io/rosbag.h"
 #include "io_test_util.h"
 
@@ -463,6 +466,121 @@ TEST(RosBag, BadScans) {
   s.range_max = std::nanf("");
   p = with_scan("limits", s);
   expect_input_error([&] { read_log(p); }, {p, "range limits"});
+}
+
+// --- the bag as a stream ---------------------------------------------------
+
+// The steps as open_log() hands them out, one at a time, checking that the
+// stream knows its length from the start and reports its progress in order.
+Log streamed(const std::string& path, const BagOptions& options = {}) {
+  const std::unique_ptr<LogStream> s = open_log(path, options);
+  const std::optional<size_t> total = s->total_steps();
+  EXPECT_TRUE(total.has_value());
+  EXPECT_EQ(s->fraction_read(), 0.0);
+  Log log;
+  log.source = s->source();
+  LogStep step;
+  double last = 0.0;
+  while (s->next(step)) {
+    log.steps.push_back(step);
+    EXPECT_GE(s->fraction_read(), last);
+    EXPECT_LE(s->fraction_read(), 1.0);
+    last = s->fraction_read();
+  }
+  EXPECT_EQ(s->fraction_read(), 1.0);
+  EXPECT_FALSE(s->next(step));  // stays at the end
+  EXPECT_EQ(total.value_or(0), log.steps.size());
+  return log;
+}
+
+TEST(RosBagStream, YieldsTheCarmenLogStepByStep) {
+  for (const auto odometry : {BagWriteOptions::Odometry::kTopic, BagWriteOptions::Odometry::kTf}) {
+    SCOPED_TRACE(odometry == BagWriteOptions::Odometry::kTf ? "tf" : "topic");
+    BagWriteOptions o;
+    o.odometry = odometry;
+    const auto e = edmonton_bag(scratch_dir(), o);
+    const Log log = streamed(e.bag);
+    EXPECT_EQ(log.source, e.bag);
+    expect_same_as_carmen(log, e.carmen);
+    // The timestamps too, as a bag holds them (to the nanosecond).
+    ASSERT_EQ(log.steps.size(), e.carmen.steps.size());
+    for (size_t k = 0; k < log.steps.size(); ++k) {
+      const double stamp = ros::Time(e.carmen.steps[k].timestamp).toSec();
+      EXPECT_EQ(log.steps[k].timestamp, stamp);
+      EXPECT_EQ(log.steps[k].scan.timestamp, stamp);
+    }
+  }
+}
+
+TEST(RosBagStream, KnowsItsLengthWithScansLeftOut) {
+  // Scans at 0.5, 1.5 and 3 s; odometry from 0 to 2 s: the last is left out.
+  const std::string p = scratch_dir() + "/left_out.bag";
+  rosbag::Bag bag;
+  bag.open(p, rosbag::bagmode::Write);
+  bag.write("/odom", ros::Time(0.001), odom_msg(0.001, 0.0));
+  bag.write("/odom", ros::Time(2.001), odom_msg(2.001, 2.0));
+  for (double t : {0.501, 1.501, 3.001}) bag.write("/scan", ros::Time(t), scan_msg(t));
+  bag.close();
+  const auto s = open_log(p);
+  EXPECT_EQ(s->total_steps(), 2u);
+  LogStep step;
+  ASSERT_TRUE(s->next(step));
+  ASSERT_TRUE(s->next(step));
+  EXPECT_LT(s->fraction_read(), 1.0);  // the third message is not read yet
+  EXPECT_FALSE(s->next(step));
+  EXPECT_EQ(s->fraction_read(), 1.0);
+  expect_identical_logs(streamed(p), read_log(p));
+}
+
+// What the reader refuses is found by the first pass: open_log() throws,
+// before any step, even for the last scan of the bag.
+TEST(RosBagStream, BadScansFailBeforeTheFirstStep) {
+  const std::string p = scratch_dir() + "/bad_last.bag";
+  rosbag::Bag bag;
+  bag.open(p, rosbag::bagmode::Write);
+  bag.write("/odom", ros::Time(1.0), odom_msg(1.0, 0.0));
+  bag.write("/odom", ros::Time(3.0), odom_msg(3.0, 2.0));
+  for (double t : {1.0, 1.5, 2.0}) bag.write("/scan", ros::Time(t), scan_msg(t));
+  auto last = scan_msg(2.5);
+  last.ranges.clear();
+  bag.write("/scan", ros::Time(2.5), last);
+  bag.close();
+  expect_input_error([&] { open_log(p); }, {p, "scan 3 on '/scan' has no beams"});
+}
+
+TEST(RosBagStream, ABagChangedBetweenThePassesIsAnError) {
+  const std::string dir = scratch_dir();
+  const std::string p = dir + "/changing.bag";
+  // Scans at 10, `second` and 12 s, odometry from 9.5 to 12.5 s.
+  auto write = [&](double second) {
+    rosbag::Bag bag;
+    bag.open(p, rosbag::bagmode::Write);
+    for (double t = 9.5; t <= 12.6; t += 0.5) bag.write("/odom", ros::Time(t), odom_msg(t, t));
+    for (double t : {10.0, second, 12.0}) bag.write("/scan", ros::Time(t), scan_msg(t));
+    bag.close();
+  };
+  // Another bag put in its place.
+  write(11.0);
+  auto stream = open_log(p);
+  small_bag(dir + "/other.bag", [](rosbag::Bag& b) {
+    b.write("/scan", ros::Time(12.5), scan_msg(12.5));
+  });
+  std::filesystem::rename(dir + "/other.bag", p);
+  expect_input_error([&] { drain(*stream); }, {p, "changed while it was read"});
+
+  // The same bag but for one scan's stamp, of the same size and with the
+  // same modification time: found at that scan, after the steps before it.
+  write(11.0);
+  const auto size = std::filesystem::file_size(p);
+  const auto modified = std::filesystem::last_write_time(p);
+  stream = open_log(p);
+  write(11.25);
+  ASSERT_EQ(std::filesystem::file_size(p), size);
+  std::filesystem::last_write_time(p, modified);
+  LogStep step;
+  ASSERT_TRUE(stream->next(step));
+  expect_input_error([&] { stream->next(step); },
+                     {p, "changed while it was read", "scan 1 on '/scan'"});
 }
 
 TEST(RosBag, Options) {

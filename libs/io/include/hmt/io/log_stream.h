@@ -10,8 +10,11 @@
 //  - CARMEN: one line at a time, in two passes over the file (the
 //    no-return threshold, the dead beams and FLASER-or-ROBOTLASER1 are
 //    decided over all its scans in the first, carmen.h);
-//  - ROS bag: the whole file (the odometry at each scan's stamp is
-//    interpolated between messages that may come later in the file).
+//  - ROS bag: one scan at a time, in two passes through the plugin (the
+//    odometry at each scan's stamp is interpolated between messages that
+//    may come later in the file, so the first reads the odometry and
+//    transforms whole, and of the scans only what the choices need,
+//    rosbag.h).
 #pragma once
 
 #include <memory>
@@ -37,11 +40,12 @@ class LogStream {
   const std::string& source() const { return source_; }
 
   // How much of the file has been read, in [0, 1], for progress reports
-  // (bytes of the file, compressed if it is; 1 for a log read whole).
+  // (bytes of the file, compressed if it is; a bag's scan messages; 1 for a
+  // log read whole).
   virtual double fraction_read() const = 0;
 
   // How many steps the log holds, when that is known before the end (a log
-  // read whole, or a CARMEN log after its first pass).
+  // read whole, or a CARMEN log or a bag after its first pass).
   virtual std::optional<size_t> total_steps() const { return std::nullopt; }
 
  protected:
@@ -52,8 +56,8 @@ class LogStream {
 };
 
 // Opens `path` (any format read_log() reads); throws hmt::InputError as
-// read_log() does for a missing, empty or unrecognised file. Readers that
-// need the whole file (above) read it here.
+// read_log() does for a missing, empty or unrecognised file. The first pass
+// of a CARMEN log or a bag is made here, so their errors are thrown here.
 std::unique_ptr<LogStream> open_log(const std::string& path, const BagOptions& bag = {});
 
 // Every step left in `stream`, as a log named after its source.

@@ -36,6 +36,12 @@
 //    0 (both invalid).
 // Messages are checked against the definitions this reader decodes: the
 // type name and the md5sum of the connection's definition.
+// The bag is read in two passes, so that it takes the memory of one scan
+// besides its odometry and transforms (held whole) and ~180 bytes per scan
+// message: the first decodes every message of the topics above but keeps
+// of a scan only its header and fields, not its readings, and makes every
+// decision above; the second decodes the scan topic's messages again, one
+// at a time, as the steps are taken (open_log(), log_stream.h).
 #pragma once
 
 #include <string>
@@ -73,7 +79,10 @@ struct BagOptions {
 // unindexed, no (or several, none named) LaserScan topics, a named topic
 // missing or of another type, a message definition other than the one
 // decoded, an undecodable message, no odometry at all, no laser mounting,
-// no scan with odometry and mounting at its stamp.
+// no scan with odometry and mounting at its stamp. All of these are found
+// by the first pass, before any step; a bag that changes between the two
+// passes is an error naming it. It is the stream open_log() returns for a
+// bag, drained.
 hmt::Log read_bag(const std::string& path, const BagOptions& options = {});
 
 }  // namespace hmt::io
