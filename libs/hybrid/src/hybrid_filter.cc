@@ -401,9 +401,11 @@ std::optional<AlignmentJob> HybridFilter::accept_if_dominant() {
   const std::vector<double> p = probabilities();
   const auto winner = tlca::dominant(p, opt_.tlca);
   if (!winner) {
-    // No acceptance: only the history every hypothesis shares is forgotten.
+    std::optional<AlignmentJob> job = accept_shared_closures(p);
+    // Otherwise no acceptance: only the history every hypothesis shares is
+    // forgotten.
     forget_shared_history();
-    return std::nullopt;
+    return job;
   }
   Hypothesis& w = hyps_[*winner];
   if (hyps_.size() == 1 && w.pending_closures.empty() && w.topo.path.size() <= 1)
@@ -424,6 +426,71 @@ std::optional<AlignmentJob> HybridFilter::accept_if_dominant() {
   Hypothesis survivor = std::move(w);
   hyps_.clear();
   hyps_.push_back(std::move(survivor));
+  return job;
+}
+
+namespace {
+
+// Whether `a` holds `prefix`'s first n closures first: records copied from
+// a common ancestor, so bit for bit the same.
+bool starts_with(const std::vector<tlca::ClosureRecord>& a,
+                 const std::vector<tlca::ClosureRecord>& prefix, size_t n) {
+  if (a.size() < n) return false;
+  for (size_t i = 0; i < n; ++i) {
+    const tlca::ClosureRecord& x = a[i];
+    const tlca::ClosureRecord& y = prefix[i];
+    if (x.from != y.from || x.to != y.to || x.step != y.step ||
+        x.measurement.mean.x != y.measurement.mean.x ||
+        x.measurement.mean.y != y.measurement.mean.y ||
+        x.measurement.mean.theta != y.measurement.mean.theta ||
+        x.measurement.cov != y.measurement.cov)
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::optional<AlignmentJob> HybridFilter::accept_shared_closures(const std::vector<double>& p) {
+  if (opt_.tlca.policy != tlca::AcceptancePolicy::kProbability || hyps_.size() < 2)
+    return std::nullopt;
+  size_t best = 0;
+  for (size_t i = 1; i < hyps_.size(); ++i)
+    if (p[i] > p[best]) best = i;
+  const std::vector<tlca::ClosureRecord>& mine = hyps_[best].pending_closures;
+  // The longest run of the most probable hypothesis's first closures that
+  // hypotheses of accept_probability in all hold.
+  std::vector<char> holds(hyps_.size(), 0);
+  double mass = 0.0;
+  size_t n = mine.size();
+  for (; n > 0; --n) {
+    mass = 0.0;
+    for (size_t i = 0; i < hyps_.size(); ++i) {
+      holds[i] = starts_with(hyps_[i].pending_closures, mine, n) ? 1 : 0;
+      if (holds[i]) mass += p[i];
+    }
+    if (mass >= opt_.tlca.accept_probability) break;
+  }
+  if (n == 0) return std::nullopt;
+  AlignmentJob job;
+  job.step = step_;
+  job.hypothesis = hyps_[best].id;
+  job.probability = mass;
+  job.map = hyps_[best].map;
+  job.closures.assign(mine.begin(), mine.begin() + static_cast<std::ptrdiff_t>(n));
+  std::vector<Hypothesis> kept;
+  for (size_t i = 0; i < hyps_.size(); ++i) {
+    if (!holds[i]) {
+      ++job.dropped;
+      continue;
+    }
+    Hypothesis& h = hyps_[i];
+    h.pending_closures.erase(h.pending_closures.begin(),
+                             h.pending_closures.begin() + static_cast<std::ptrdiff_t>(n));
+    kept.push_back(std::move(h));
+  }
+  hyps_ = std::move(kept);
+  normalise_and_prune();
   return job;
 }
 

@@ -156,6 +156,66 @@ TEST(HybridFilter, ResumedRunStillAlignsTheClosuresMadeBeforeTheSave) {
   EXPECT_TRUE(f.hypotheses()[0].pending_closures.empty());
 }
 
+// No hypothesis dominates, but the closure the most probable one made first
+// is held by hypotheses of 0.995 in all (descendants of the one that made
+// it): that closure is accepted and fused into every survivor's arcs, the
+// hypothesis without it dropped, and the closures made since stay pending.
+TEST(HybridFilter, AcceptsTheClosuresThatHypothesesOfEnoughProbabilityShare) {
+  topology::Session s = saved_after(testing_ring::ring_run(7), 60);
+  const topology::SessionHypothesis h = s.hypotheses[0];
+  ASSERT_GE(h.map.area_ids().size(), 2u);
+  const topology::ClosureRecord c1 = closure_from_current_area(h, s.steps);
+  topology::ClosureRecord c2 = c1;
+  c2.step += 1;
+  c2.measurement.mean.x = 2.0;
+  auto hypothesis = [&](uint32_t id, double p, std::vector<topology::ClosureRecord> pending) {
+    topology::SessionHypothesis x = h;
+    x.id = id;
+    x.topo.log_weight = std::log(p);
+    x.pending_closures = std::move(pending);
+    return x;
+  };
+  s.hypotheses = {hypothesis(1, 0.6, {c1, c2}), hypothesis(2, 0.395, {c1}),
+                  hypothesis(3, 0.005, {})};
+  HybridFilter f(ring_options());
+  f.resume(s);
+  ASSERT_EQ(f.hypotheses().size(), 3u);
+  const std::optional<AlignmentJob> job = f.accept_if_dominant();
+  ASSERT_TRUE(job.has_value());
+  ASSERT_EQ(job->closures.size(), 1u);
+  EXPECT_EQ(job->closures[0].step, c1.step);
+  EXPECT_EQ(job->closures[0].measurement.mean.x, 1.0);
+  EXPECT_EQ(job->hypothesis, 1u);
+  EXPECT_EQ(job->dropped, 1u);
+  EXPECT_NEAR(job->probability, 0.995, 1e-9);
+  ASSERT_EQ(f.hypotheses().size(), 2u);
+  EXPECT_EQ(f.hypotheses()[0].id, 1u);
+  ASSERT_EQ(f.hypotheses()[0].pending_closures.size(), 1u);
+  EXPECT_EQ(f.hypotheses()[0].pending_closures[0].step, c2.step);
+  EXPECT_EQ(f.hypotheses()[1].id, 2u);
+  EXPECT_TRUE(f.hypotheses()[1].pending_closures.empty());
+  const std::vector<tlca::ClosureReport> reports = f.align(*job);
+  ASSERT_EQ(reports.size(), 1u);
+  f.apply_alignment(*job, reports);
+  topology::HmtMap expected = h.map;
+  tlca::apply_closure(expected, reports[0]);
+  for (const Hypothesis& survivor : f.hypotheses()) {
+    ASSERT_TRUE(survivor.map.has_arc(c1.from, c1.to));
+    EXPECT_EQ(survivor.map.arc(c1.from, c1.to).mean.x, expected.arc(c1.from, c1.to).mean.x);
+    EXPECT_EQ(survivor.map.arc(c1.from, c1.to).cov, expected.arc(c1.from, c1.to).cov);
+  }
+  EXPECT_EQ(f.stats().loop_closures_accepted, 1u);
+
+  // Short of accept_probability (0.98): nothing is accepted or dropped.
+  s.hypotheses = {hypothesis(1, 0.6, {c1, c2}), hypothesis(2, 0.38, {c1}),
+                  hypothesis(3, 0.02, {})};
+  HybridFilter g(ring_options());
+  g.resume(s);
+  EXPECT_FALSE(g.accept_if_dominant().has_value());
+  EXPECT_EQ(g.hypotheses().size(), 3u);
+  EXPECT_EQ(g.hypotheses()[0].pending_closures.size(), 2u);
+}
+
 TEST(HybridFilter, TheOutputMapFusesTheClosuresTheLogEndedTooEarlyToAccept) {
   // The log ends while the best hypothesis still holds a closure TLCA has
   // not accepted: the output map holds it checked and fused as acceptance

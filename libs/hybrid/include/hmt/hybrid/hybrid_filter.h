@@ -24,7 +24,8 @@
 //  5. Loop-closure acceptance (TLCA): when one hypothesis dominates (policy
 //     in tlca::TlcaOptions) the others are dropped, its loop closures are
 //     fine-aligned and fused into the arcs, and the shared topological
-//     history is forgotten.
+//     history is forgotten. Short of that, the closures that hypotheses of
+//     accept_probability in all share are accepted alone.
 //
 // process() runs the five steps in order. The same steps are also offered one
 // by one (metric_step, prepare_event / evaluate / apply_event,
@@ -218,6 +219,11 @@ class HybridFilter {
   void normalise_and_prune();
   void share_particles(const std::vector<double>& probabilities);
   void forget_shared_history();
+  // When no hypothesis dominates but the closures the most probable one
+  // made first are shared by hypotheses of accept_probability in all (they
+  // descend from the hypothesis that made them): those closures are
+  // accepted, the hypotheses without them dropped.
+  std::optional<AlignmentJob> accept_shared_closures(const std::vector<double>& p);
 
   HmtOptions opt_;
   std::shared_ptr<metric_slam::WorkerPool> pool_;  // metric SLAM's particles

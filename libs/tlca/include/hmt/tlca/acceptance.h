@@ -64,7 +64,12 @@
 //
 // When is a hypothesis "highly dominant (or unique)"? Two policies:
 //  - kProbability: its probability reaches accept_probability; the others
-//    are dropped.
+//    are dropped. Before that, the loop closures that hypotheses of
+//    accept_probability in all share (made by their common ancestor, so the
+//    most probable one's first closures) are accepted alone, and the
+//    hypotheses without them dropped: which area the robot entered then is
+//    settled, whatever the hypotheses still dispute since
+//    (hybrid::HybridFilter::accept_shared_closures).
 //  - kUnique: only when it is the last one left (the others were pruned for
 //    falling under the filter's prune threshold).
 #pragma once
