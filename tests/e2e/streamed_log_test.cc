@@ -60,6 +60,19 @@ void expect_bounded_run(const std::string& dir, const std::string& log, double l
   EXPECT_LT(peak_mb, kBoundMb) << "log " << log_mb << " MB";
 }
 
+// `convert` streams the log too; then no child of this test so far (the
+// runs and the conversion) held more than the bound.
+void expect_bounded_convert(const std::string& dir, const std::string& log) {
+  const AppResult c = run_app("convert --input '" + log + "' --output '" + dir +
+                                  "/standing.rawlog.gz' --format obs",
+                              dir);
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_NE(c.out.find("wrote " + std::to_string(kScans) + " scans"), std::string::npos) << c.out;
+  struct rusage children {};
+  ASSERT_EQ(getrusage(RUSAGE_CHILDREN, &children), 0);
+  EXPECT_LT(static_cast<double>(children.ru_maxrss) / 1024.0, kBoundMb);
+}
+
 TEST(StreamedLog, LongRawlogRunsInBoundedMemory) {
   if (kSanitizerBuild)
     GTEST_SKIP() << "sanitizer runtimes add their own memory: the bound is for the real build";
@@ -92,21 +105,13 @@ TEST(StreamedLog, LongCarmenLogRunsInBoundedMemory) {
       (1024.0 * 1024.0);
   expect_bounded_run(dir, path, held_mb);
 
-  // `metric` and `convert` stream too.
+  // `metric` streams too.
   const AppResult m =
       run_app("metric --quiet --input '" + path + "' --out '" + dir + "/metric'" + kLight, dir);
   ASSERT_EQ(m.exit_code, 0) << m.err;
   EXPECT_EQ(nlohmann::json::parse(slurp(dir + "/metric/summary.json"))["scans"].get<size_t>(),
             kScans);
-  const AppResult c = run_app("convert --input '" + path + "' --output '" + dir +
-                                  "/standing.rawlog.gz' --format obs",
-                              dir);
-  ASSERT_EQ(c.exit_code, 0) << c.err;
-  EXPECT_NE(c.out.find("wrote " + std::to_string(kScans) + " scans"), std::string::npos) << c.out;
-  // The largest child of this test so far (run, metric, convert).
-  struct rusage children {};
-  ASSERT_EQ(getrusage(RUSAGE_CHILDREN, &children), 0);
-  EXPECT_LT(static_cast<double>(children.ru_maxrss) / 1024.0, kBoundMb);
+  expect_bounded_convert(dir, path);
   std::filesystem::remove(path);
 }
 
@@ -146,16 +151,7 @@ TEST(StreamedLog, LongRosBagRunsInBoundedMemory) {
   }
   ASSERT_GT(std::filesystem::file_size(path), kScans * kBeams * 4);
   expect_bounded_run(dir, path, kScans * kBeams * 9.0 / (1024.0 * 1024.0));
-
-  const AppResult c = run_app("convert --input '" + path + "' --output '" + dir +
-                                  "/standing.rawlog.gz' --format obs",
-                              dir);
-  ASSERT_EQ(c.exit_code, 0) << c.err;
-  EXPECT_NE(c.out.find("wrote " + std::to_string(kScans) + " scans"), std::string::npos) << c.out;
-  // The largest child of this test (run, convert).
-  struct rusage children {};
-  ASSERT_EQ(getrusage(RUSAGE_CHILDREN, &children), 0);
-  EXPECT_LT(static_cast<double>(children.ru_maxrss) / 1024.0, kBoundMb);
+  expect_bounded_convert(dir, path);
   std::filesystem::remove(path);
 }
 

@@ -231,16 +231,20 @@ TEST(RosBag, BeamsFollowRosConventions) {
   EXPECT_EQ(out.ranges, ranges);
 }
 
-TEST(RosBag, OdometryIsInterpolatedAtTheScanStamps) {
-  const std::string p = scratch_dir() + "/interp.bag";
+// Odometry at 0 and 2 s (x from 0 to 2 m); the scans at 0.5 (x = 0.5 m) and
+// 1.5 s (1.5 m) and one at 3 s, after the last odometry: left out.
+void write_scans_past_the_odometry(const std::string& p) {
   rosbag::Bag bag;
   bag.open(p, rosbag::bagmode::Write);
-  // Odometry at 0 and 2 s; the scans at 0.5 (x = 0.5 m) and 1.5 s (1.5 m)
-  // and one at 3 s, after the last odometry: left out.
   bag.write("/odom", ros::Time(0.001), odom_msg(0.001, 0.0));
   bag.write("/odom", ros::Time(2.001), odom_msg(2.001, 2.0));
   for (double t : {0.501, 1.501, 3.001}) bag.write("/scan", ros::Time(t), scan_msg(t));
   bag.close();
+}
+
+TEST(RosBag, OdometryIsInterpolatedAtTheScanStamps) {
+  const std::string p = scratch_dir() + "/interp.bag";
+  write_scans_past_the_odometry(p);
   const Log log = read_log(p);
   ASSERT_EQ(log.steps.size(), 2u);
   EXPECT_FALSE(log.steps[0].has_odometry);
@@ -513,14 +517,8 @@ TEST(RosBagStream, YieldsTheCarmenLogStepByStep) {
 }
 
 TEST(RosBagStream, KnowsItsLengthWithScansLeftOut) {
-  // Scans at 0.5, 1.5 and 3 s; odometry from 0 to 2 s: the last is left out.
   const std::string p = scratch_dir() + "/left_out.bag";
-  rosbag::Bag bag;
-  bag.open(p, rosbag::bagmode::Write);
-  bag.write("/odom", ros::Time(0.001), odom_msg(0.001, 0.0));
-  bag.write("/odom", ros::Time(2.001), odom_msg(2.001, 2.0));
-  for (double t : {0.501, 1.501, 3.001}) bag.write("/scan", ros::Time(t), scan_msg(t));
-  bag.close();
+  write_scans_past_the_odometry(p);
   const auto s = open_log(p);
   EXPECT_EQ(s->total_steps(), 2u);
   LogStep step;
