@@ -1,10 +1,14 @@
-// The MRPT plugin: reads a whole rawlog with MRPT's own deserializers, for
-// files holding classes the native reader does not know (images, GPS, 3D
-// scans... in multi-sensor logs). Loaded with dlopen by mrpt_fallback.cc, so
-// that MRPT is only mapped into processes that need it.
+// The MRPT plugin: reads a rawlog with MRPT's own deserializers, entry by
+// entry as the steps are asked for, for files holding classes the native
+// reader does not know (images, GPS, 3D scans... in multi-sensor logs).
+// Loaded with dlopen by mrpt_fallback.cc, so that MRPT is only mapped into
+// processes that need it.
 //
 // The objects are converted to the same records the native reader makes and
-// collected by the same RawlogCollector, so both give the same log.
+// collected by the same RawlogCollector, driven the same way (an entry is
+// read when no step is final), so both give the same steps and the same
+// errors at the same points, and hold the same: one entry, and the scans
+// that wait for the odometry source.
 #include <climits>
 #include <new>
 #include <stdexcept>
@@ -136,17 +140,30 @@ void add_entry(const CSerializable::Ptr& obj, RawlogCollector& collector,
   }
 }
 
-hmt::Log read_rawlog(const std::string& path, bool chosen_by_content) {
-  GzInputStream in(path);
-  MrptGzStream stream(in);
-  auto archive = mrpt::serialization::archiveFrom(stream);
-  RawlogCollector collector(path);
-  size_t entry = 0;
-  for (;; ++entry) {
+}  // namespace
+
+// One open rawlog: the file, MRPT's archive over it, and the collector.
+struct MrptRawlogCursor {
+  MrptRawlogCursor(const std::string& path, bool by_content)
+      : chosen_by_content(by_content), in(path), stream(in), archive(stream),
+        collector(path) {}
+
+  bool next(LogStep& out) {
+    while (!collector.next_step(out)) {
+      if (ended) return false;
+      read_entry();
+    }
+    return true;
+  }
+
+  // One top-level object, or the end of the file.
+  void read_entry() {
     collector.set_entry(entry);
     if (in.at_end()) {
       collector.check_clean_end(in);
-      break;
+      collector.end_of_file(entry);
+      ended = true;
+      return;
     }
     CSerializable::Ptr obj;
     try {
@@ -158,26 +175,55 @@ hmt::Log read_rawlog(const std::string& path, bool chosen_by_content) {
                                  dynamic_cast<const std::bad_alloc*>(&e) != nullptr);
     }
     add_entry(obj, collector, false);
+    ++entry;
   }
-  return collector.finish(entry);
-}
 
-}  // namespace
-}  // namespace hmt::io::detail
+  const bool chosen_by_content;
+  GzInputStream in;
+  MrptGzStream stream;  // reads `in`
+  mrpt::serialization::CArchiveStreamBase<MrptGzStream> archive;  // reads `stream`
+  RawlogCollector collector;
+  size_t entry = 0;
+  bool ended = false;
+};
 
-extern "C" __attribute__((visibility("default")))
-hmt::io::detail::MrptReadStatus hmt_io_mrpt_read_rawlog_v1(
-    const char* path, bool chosen_by_content, hmt::Log* log,
-    std::string* error) {
-  using hmt::io::detail::MrptReadStatus;
+namespace {
+
+// Runs `read`, saying how it ended as the plugin's functions do.
+template <class Read>
+MrptReadStatus guarded(std::string* error, Read&& read) {
   try {
-    *log = hmt::io::detail::read_rawlog(path, chosen_by_content);
+    read();
     return MrptReadStatus::kOk;
-  } catch (const hmt::InputError& e) {
+  } catch (const InputError& e) {
     *error = e.what();
     return MrptReadStatus::kInputError;
   } catch (const std::exception& e) {
     *error = e.what();
     return MrptReadStatus::kFailure;
   }
+}
+
+MrptReadStatus open_rawlog(const char* path, bool chosen_by_content, MrptRawlogCursor** cursor,
+                           std::string* error) {
+  return guarded(error, [&] { *cursor = new MrptRawlogCursor(path, chosen_by_content); });
+}
+
+MrptReadStatus next_step(MrptRawlogCursor* cursor, LogStep* step, bool* got,
+                         std::string* error) {
+  return guarded(error, [&] { *got = cursor->next(*step); });
+}
+
+uint64_t file_offset(const MrptRawlogCursor* cursor) { return cursor->in.file_offset(); }
+
+void close_rawlog(MrptRawlogCursor* cursor) { delete cursor; }
+
+}  // namespace
+}  // namespace hmt::io::detail
+
+extern "C" __attribute__((visibility("default")))
+const hmt::io::detail::MrptRawlogPlugin* hmt_io_mrpt_rawlog_plugin_v2() {
+  using namespace hmt::io::detail;
+  static const MrptRawlogPlugin plugin{&open_rawlog, &next_step, &file_offset, &close_rawlog};
+  return &plugin;
 }

@@ -11,20 +11,28 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <string>
 
 #include "hmt/common/sensor_data.h"
+#include "hmt/io/log_stream.h"
 
 namespace hmt::io::detail {
 
-// Reads the whole file with MRPT, as the reader did before it read the
-// format natively (same log, same InputError messages). `needed_for` says
-// what made MRPT necessary ("a CObservationImage (entry 3)"); it names the
-// problem if the plugin cannot be loaded, which is an InputError too.
+// Opens the file for reading with MRPT, entry by entry as the steps are
+// taken (mrpt_plugin_abi.h): the steps, and the InputError messages where
+// the reader meets damage or finds the log unusable, are the ones the
+// native reader gives. `needed_for` says what made MRPT necessary ("a
+// CObservationImage (entry 3)"); it names the problem if the plugin cannot
+// be loaded (or is of another build), which is an InputError too.
+std::unique_ptr<LogStream> open_rawlog_with_mrpt(const std::string& path, bool chosen_by_content,
+                                                 const std::string& needed_for);
+
+// The same stream drained.
 hmt::Log read_rawlog_with_mrpt(const std::string& path, bool chosen_by_content,
                                const std::string& needed_for);
 
-// How many reads have gone through MRPT in this process.
+// How many files have been opened with MRPT in this process.
 size_t mrpt_fallback_reads();
 
 }  // namespace hmt::io::detail

@@ -160,14 +160,4 @@ void RawlogCollector::end_of_file(size_t entries) {
   decide(Source::kReadings);
 }
 
-hmt::Log RawlogCollector::finish(size_t entries) {
-  end_of_file(entries);
-  hmt::Log log;
-  log.source = path_;
-  log.steps.reserve(ready_.size());
-  LogStep step;
-  while (next_step(step)) log.steps.push_back(std::move(step));
-  return log;
-}
-
 }  // namespace hmt::io::detail

@@ -1,7 +1,8 @@
 // Turns the rawlog's scans, odometry readings and robot movements, in file
 // order, into the internal stream, step by step. Shared by the native
-// reader and the MRPT plugin, so that both give the same log for the same
-// file.
+// reader and the MRPT plugin, which drive it alike (the next entry is read
+// when no step is final), so that both give the same steps for the same
+// file, and the same errors at the same points.
 //
 // The odometry source: robot movements (CActionRobotMovement2D) if the file
 // holds any, else odometry readings (CObservationOdometry). A scan's step is
@@ -64,9 +65,6 @@ class RawlogCollector {
   // become final. Throws InputError if the file held no scans, or scans but
   // no odometry.
   void end_of_file(size_t entries);
-  // end_of_file(), then every step not taken yet, as a log: for readers of
-  // whole files (the MRPT plugin).
-  hmt::Log finish(size_t entries);
 
  private:
   enum class Source { kUnknown, kMovements, kReadings };

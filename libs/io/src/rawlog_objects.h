@@ -10,8 +10,8 @@
 //
 // Any other class (camera images, GPS, 3D scans...) has a layout this code
 // does not know, and since objects carry no length it cannot be skipped:
-// reading stops with UnknownClassError, and the caller hands the whole file
-// to MRPT itself (mrpt_fallback.h).
+// reading stops with UnknownClassError, and the caller hands the file to
+// MRPT itself (mrpt_fallback.h).
 #pragma once
 
 #include <stdexcept>

@@ -62,18 +62,19 @@ class RawlogStream : public LogStream {
         collector_(path) {}
 
   bool next(LogStep& out) override {
-    if (whole_) return whole_->next(out);
+    if (mrpt_) return mrpt_->next(out);
     while (!collector_.next_step(out)) {
       if (ended_) return false;
       read_entry();
-      if (whole_) return whole_->next(out);
+      if (mrpt_) return mrpt_->next(out);
     }
     ++handed_out_;
     return true;
   }
 
   double fraction_read() const override {
-    if (whole_ || ended_ || file_bytes_ == 0) return 1.0;
+    if (mrpt_) return mrpt_->fraction_read();
+    if (ended_ || file_bytes_ == 0) return 1.0;
     return std::min(1.0, static_cast<double>(in_.file_offset()) / static_cast<double>(file_bytes_));
   }
 
@@ -92,14 +93,14 @@ class RawlogStream : public LogStream {
       obj = read_object(archive_);
     } catch (const UnknownClassError& e) {
       // Objects carry no length, so the rest of the file cannot be read
-      // without knowing this class: MRPT reads the whole file instead, and
-      // its log goes on after the steps already handed out (the same ones:
-      // the plugin collects with the same RawlogCollector).
-      whole_ = stream_of(read_rawlog_with_mrpt(
+      // without knowing this class: MRPT reads the file instead, from its
+      // start, and its stream goes on after the steps already handed out
+      // (the same ones: the plugin collects with the same RawlogCollector).
+      mrpt_ = open_rawlog_with_mrpt(
           source(), chosen_by_content_,
-          "a " + e.class_name + " (entry " + std::to_string(entry_) + ")"));
+          "a " + e.class_name + " (entry " + std::to_string(entry_) + ")");
       LogStep skipped;
-      for (size_t k = 0; k < handed_out_; ++k) whole_->next(skipped);
+      for (size_t k = 0; k < handed_out_; ++k) mrpt_->next(skipped);
       return;
     } catch (const ArchiveError&) {
       // The clean end was handled by at_end() above, so this is damage.
@@ -117,7 +118,7 @@ class RawlogStream : public LogStream {
   size_t entry_ = 0;
   size_t handed_out_ = 0;
   bool ended_ = false;
-  std::unique_ptr<LogStream> whole_;  // the MRPT plugin's log, once needed
+  std::unique_ptr<LogStream> mrpt_;  // the MRPT plugin's stream, once needed
 };
 
 }  // namespace

@@ -5,8 +5,11 @@
 // format has one reader. What each reader holds while it streams:
 //  - MRPT rawlog, read natively: one entry at a time; scans are held back
 //    only until the file's odometry source is known (rawlog.h);
-//  - MRPT rawlog holding a class only MRPT reads (images, GPS...): the whole
-//    file, read by the MRPT plugin first (src/mrpt_fallback.h);
+//  - MRPT rawlog holding a class only MRPT reads (images, GPS...): the same,
+//    through the MRPT plugin (src/mrpt_fallback.h), which reads the file
+//    again from its start when the native reader meets that class (the
+//    steps already handed out are skipped, not held), and one entry's MRPT
+//    objects at a time;
 //  - CARMEN: one line at a time, in two passes over the file (the
 //    no-return threshold, the dead beams and FLASER-or-ROBOTLASER1 are
 //    decided over all its scans in the first, carmen.h);

@@ -13,7 +13,7 @@
 // odometry observations with a scan between them is refused as mixing the
 // layouts (the reader streams, and decides the source as early as that:
 // src/rawlog_collector.h). open_log() (log_stream.h) reads a rawlog entry
-// by entry, except through the MRPT plugin, which reads the whole file.
+// by entry, through the MRPT plugin too.
 #pragma once
 
 #include <string>
