@@ -82,17 +82,18 @@ void expect_bounded_run(const std::string& dir, const std::string& log, double l
   EXPECT_LT(peak_mb, bound_mb) << "log " << log_mb << " MB";
 }
 
-// `convert` streams the log too; then no child of this test so far (the
-// runs and the conversion) held more than the bound.
-void expect_bounded_convert(const std::string& dir, const std::string& log) {
+// `convert` (to `format`) streams the log too; then no child of this test so
+// far (the runs and the conversion) held more than the bound.
+void expect_bounded_convert(const std::string& dir, const std::string& log,
+                            const std::string& format = "obs", double bound_mb = kBoundMb) {
   const AppResult c = run_app("convert --input '" + log + "' --output '" + dir +
-                                  "/standing.rawlog.gz' --format obs",
+                                  "/standing.rawlog.gz' --format " + format,
                               dir);
   ASSERT_EQ(c.exit_code, 0) << c.err;
   EXPECT_NE(c.out.find("wrote " + std::to_string(kScans) + " scans"), std::string::npos) << c.out;
   struct rusage children {};
   ASSERT_EQ(getrusage(RUSAGE_CHILDREN, &children), 0);
-  EXPECT_LT(static_cast<double>(children.ru_maxrss) / 1024.0, kBoundMb);
+  EXPECT_LT(static_cast<double>(children.ru_maxrss) / 1024.0, bound_mb);
 }
 
 TEST(StreamedLog, LongRawlogRunsInBoundedMemory) {
@@ -238,15 +239,7 @@ TEST(StreamedLog, LongRawlogThroughTheMrptPluginRunsInBoundedMemory) {
   EXPECT_NE(without.err.find("CObservationImage"), std::string::npos) << without.err;
 
   expect_bounded_run(dir, path, kScans * kBeams * 9.0 / (1024.0 * 1024.0), kMrptBoundMb);
-  const AppResult c = run_app("convert --input '" + path + "' --output '" + dir +
-                                  "/standing.rawlog.gz' --format sf",
-                              dir);
-  ASSERT_EQ(c.exit_code, 0) << c.err;
-  EXPECT_NE(c.out.find("wrote " + std::to_string(kScans) + " scans"), std::string::npos) << c.out;
-  // The largest child of this test (the failed convert, run, convert).
-  struct rusage children {};
-  ASSERT_EQ(getrusage(RUSAGE_CHILDREN, &children), 0);
-  EXPECT_LT(static_cast<double>(children.ru_maxrss) / 1024.0, kMrptBoundMb);
+  expect_bounded_convert(dir, path, "sf", kMrptBoundMb);
   std::filesystem::remove(path);
 }
 
