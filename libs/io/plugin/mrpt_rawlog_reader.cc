@@ -189,29 +189,14 @@ struct MrptRawlogCursor {
 
 namespace {
 
-// Runs `read`, saying how it ended as the plugin's functions do.
-template <class Read>
-MrptReadStatus guarded(std::string* error, Read&& read) {
-  try {
-    read();
-    return MrptReadStatus::kOk;
-  } catch (const InputError& e) {
-    *error = e.what();
-    return MrptReadStatus::kInputError;
-  } catch (const std::exception& e) {
-    *error = e.what();
-    return MrptReadStatus::kFailure;
-  }
-}
-
-MrptReadStatus open_rawlog(const char* path, bool chosen_by_content, MrptRawlogCursor** cursor,
-                           std::string* error) {
-  return guarded(error, [&] { *cursor = new MrptRawlogCursor(path, chosen_by_content); });
-}
-
-MrptReadStatus next_step(MrptRawlogCursor* cursor, LogStep* step, bool* got,
+PluginStatus open_rawlog(const char* path, bool chosen_by_content, MrptRawlogCursor** cursor,
                          std::string* error) {
-  return guarded(error, [&] { *got = cursor->next(*step); });
+  return plugin_status_of(error,
+                          [&] { *cursor = new MrptRawlogCursor(path, chosen_by_content); });
+}
+
+PluginStatus next_step(MrptRawlogCursor* cursor, LogStep* step, bool* got, std::string* error) {
+  return plugin_status_of(error, [&] { *got = cursor->next(*step); });
 }
 
 uint64_t file_offset(const MrptRawlogCursor* cursor) { return cursor->in.file_offset(); }

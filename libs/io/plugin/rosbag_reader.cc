@@ -168,26 +168,21 @@ BagContents read_contents(const std::string& path) {
   return out;
 }
 
-// Runs `read`, saying how it ended as the plugin's functions do.
+// Runs `read`, saying how it ended as the plugin's functions do; damage
+// rosbag finds while reading the chunks (the index was readable) is a bad
+// file.
 template <class Read>
-BagReadStatus guarded(const std::string& path, std::string* error, Read&& read) {
-  try {
-    read();
-    return BagReadStatus::kOk;
-  } catch (const InputError& e) {
-    *error = e.what();
-    return BagReadStatus::kInputError;
-  } catch (const rosbag::BagException& e) {
-    // Damage found while reading the chunks (the index was readable).
-    *error = "ROS bag '" + path + "' is damaged: " + e.what();
-    return BagReadStatus::kInputError;
-  } catch (const std::exception& e) {
-    *error = e.what();
-    return BagReadStatus::kFailure;
-  }
+PluginStatus guarded(const std::string& path, std::string* error, Read&& read) {
+  return plugin_status_of(error, [&] {
+    try {
+      read();
+    } catch (const rosbag::BagException& e) {
+      throw InputError("ROS bag '" + path + "' is damaged: " + e.what());
+    }
+  });
 }
 
-BagReadStatus read_contents_of(const char* path, BagContents* contents, std::string* error) {
+PluginStatus read_contents_of(const char* path, BagContents* contents, std::string* error) {
   return guarded(path, error, [&] { *contents = read_contents(path); });
 }
 
@@ -229,12 +224,12 @@ struct BagScanCursor {
 
 namespace {
 
-BagReadStatus open_scans(const char* path, const char* topic, BagScanCursor** cursor,
-                         std::string* error) {
+PluginStatus open_scans(const char* path, const char* topic, BagScanCursor** cursor,
+                        std::string* error) {
   return guarded(path, error, [&] { *cursor = new BagScanCursor(path, topic); });
 }
 
-BagReadStatus next_scan(BagScanCursor* cursor, BagScan* scan, bool* got, std::string* error) {
+PluginStatus next_scan(BagScanCursor* cursor, BagScan* scan, bool* got, std::string* error) {
   return guarded(cursor->path, error, [&] { *got = cursor->next(*scan); });
 }
 

@@ -34,16 +34,8 @@ const MrptRawlogPlugin& load_plugin(const std::string& path, const std::string& 
 }
 
 // A plugin function's outcome, as the exception it stands for.
-void check(MrptReadStatus status, const std::string& path, const std::string& error) {
-  switch (status) {
-    case MrptReadStatus::kOk:
-      return;
-    case MrptReadStatus::kInputError:
-      throw InputError(error);
-    case MrptReadStatus::kFailure:
-      break;
-  }
-  throw std::runtime_error("reading rawlog '" + path + "' with MRPT: " + error);
+void check(PluginStatus status, const std::string& path, const std::string& error) {
+  throw_unless_ok(status, error, [&] { return "reading rawlog '" + path + "' with MRPT"; });
 }
 
 // The plugin's cursor as a stream; the cursor (the file, MRPT's objects) is

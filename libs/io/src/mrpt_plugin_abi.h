@@ -10,12 +10,9 @@
 #include <string>
 
 #include "hmt/common/sensor_data.h"
+#include "plugin_status.h"
 
 namespace hmt::io::detail {
-
-// kInputError: the file is bad (`error` holds the hmt::InputError's one-line
-// message); kFailure: something else failed (`error` says what).
-enum class MrptReadStatus : int { kOk = 0, kInputError = 1, kFailure = 2 };
 
 // An open rawlog being read. Defined by the plugin; only pointers to it
 // cross.
@@ -24,16 +21,16 @@ struct MrptRawlogCursor;
 struct MrptRawlogPlugin {
   // Opens the rawlog at `path` (gzip or plain); see rawlog_reader.h for
   // `chosen_by_content`. Nothing is read yet.
-  MrptReadStatus (*open)(const char* path, bool chosen_by_content, MrptRawlogCursor** cursor,
-                         std::string* error);
+  PluginStatus (*open)(const char* path, bool chosen_by_content, MrptRawlogCursor** cursor,
+                       std::string* error);
   // The next step into *step and *got true; *got false at the clean end of
   // the log. Entries are read with MRPT's deserializers as the steps need
   // them, and collected by the RawlogCollector the native reader uses: the
   // steps, and the errors at the points they are found, are the native
   // reader's (rawlog_collector.h says which scans wait for the odometry
   // source).
-  MrptReadStatus (*next)(MrptRawlogCursor* cursor, hmt::LogStep* step, bool* got,
-                         std::string* error);
+  PluginStatus (*next)(MrptRawlogCursor* cursor, hmt::LogStep* step, bool* got,
+                       std::string* error);
   // How far into the file (compressed bytes, if it is) reading has got.
   uint64_t (*file_offset)(const MrptRawlogCursor* cursor);
   // Closes the file and frees the cursor.

@@ -9,12 +9,9 @@
 #include <string>
 
 #include "bag_contents.h"
+#include "plugin_status.h"
 
 namespace hmt::io::detail {
-
-// kInputError: the file is bad (`error` holds the hmt::InputError's one-line
-// message); kFailure: something else failed (`error` says what).
-enum class BagReadStatus : int { kOk = 0, kInputError = 1, kFailure = 2 };
 
 // The second pass over a bag: one topic's messages in the bag's order.
 // Defined by the plugin; only pointers to it cross.
@@ -23,14 +20,14 @@ struct BagScanCursor;
 struct RosbagPlugin {
   // The first pass: every topic, odometry message and transform, and the
   // LaserScan messages of every topic without their readings.
-  BagReadStatus (*read_contents)(const char* path, BagContents* contents, std::string* error);
+  PluginStatus (*read_contents)(const char* path, BagContents* contents, std::string* error);
   // The second pass over `topic`, a LaserScan topic: the messages are read
   // and decoded one at a time, as next_scan() asks for them.
-  BagReadStatus (*open_scans)(const char* path, const char* topic, BagScanCursor** cursor,
-                              std::string* error);
-  // The next message into *scan and *got true; *got false past the last.
-  BagReadStatus (*next_scan)(BagScanCursor* cursor, BagScan* scan, bool* got,
+  PluginStatus (*open_scans)(const char* path, const char* topic, BagScanCursor** cursor,
                              std::string* error);
+  // The next message into *scan and *got true; *got false past the last.
+  PluginStatus (*next_scan)(BagScanCursor* cursor, BagScan* scan, bool* got,
+                            std::string* error);
   // Closes the bag and frees the cursor.
   void (*close_scans)(BagScanCursor* cursor);
 };

@@ -32,16 +32,8 @@ const RosbagPlugin& load_plugin(const std::string& path) {
 }
 
 // A plugin function's outcome, as the exception it stands for.
-void check(BagReadStatus status, const std::string& path, const std::string& error) {
-  switch (status) {
-    case BagReadStatus::kOk:
-      return;
-    case BagReadStatus::kInputError:
-      throw InputError(error);
-    case BagReadStatus::kFailure:
-      break;
-  }
-  throw std::runtime_error("reading ROS bag '" + path + "': " + error);
+void check(PluginStatus status, const std::string& path, const std::string& error) {
+  throw_unless_ok(status, error, [&] { return "reading ROS bag '" + path + "'"; });
 }
 
 BagContents first_pass(const RosbagPlugin& plugin, const std::string& path) {
