@@ -11,7 +11,6 @@
 #include <system_error>
 #include <vector>
 
-#include "hmt/area/area_size.h"
 #include "hmt/checkpoint/checkpoint.h"
 #include "hmt/common/config.h"
 #include "hmt/common/error.h"
@@ -25,6 +24,7 @@
 #include "hmt/pipeline/hmt_job.h"
 #include "hmt/pipeline/input_steps.h"
 #include "hmt/pipeline/metric_job.h"
+#include "hmt/pipeline/options_from_log.h"
 #include "hmt/pipeline/stop_signal.h"
 #include "hmt/topology/topology_file.h"
 #include "hmt/version.h"
@@ -69,15 +69,8 @@ int run(const std::vector<std::string>& configs, const std::string& input,
   };
   hmt::pipeline::InputSteps steps(open(), opt.input);
   std::fprintf(stderr, "hmt-slam: %d particles\n", opt.rbpf.particles);
-  // From the first scan that has a field of view: the steps looked at are
-  // held until the run takes them (all of them only in a log without one).
-  if (opt.area.partition.tau_from_sensor)
-    for (size_t k = 0; const hmt::LogStep* s = steps.peek(k); ++k)
-      if (hmt::area::resolve_tau(opt.area, s->scan)) {
-        std::fprintf(stderr, "hmt-slam: [area] tau = auto: %.3f from the laser's field of view\n",
-                     opt.area.partition.tau);
-        break;
-      }
+  // tau and the matching range follow from the log's first steps.
+  hmt::pipeline::resolve_options_from_log(opt, steps);
   if (hybrid) {
     hmt::pipeline::install_stop_handlers();
     const auto sum = hmt::pipeline::run_hmt_job(opt, steps, open, cfg, out_dir, !quiet,

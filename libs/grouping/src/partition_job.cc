@@ -20,6 +20,7 @@
 #include "hmt/grid/scan_insertion.h"
 #include "hmt/grouping/images.h"
 #include "hmt/io/log_reader.h"
+#include "hmt/metric_slam/matching_range.h"
 
 namespace hmt::grouping {
 namespace {
@@ -291,6 +292,10 @@ PartitionSummary run_partition(const PartitionJobOptions& options,
   auto t = Clock::now();
   const Log log = io::read_log(req.log_path, req.bag);
   area::resolve_tau(opt.area, log);  // tau = auto: from the sensor's field of view
+  // max_range = auto: from the log's ranges.
+  metric_slam::RangeSample ranges;
+  for (size_t i = 0; i < log.steps.size() && !ranges.complete(); ++i) ranges.add(log.steps[i].scan);
+  metric_slam::resolve_matching_range(opt.local_maps.matcher, opt.local_maps.insertion, ranges);
   const double read_s = since(t);
   t = Clock::now();
   ScanPoses poses =

@@ -52,6 +52,7 @@ void RbpfOptions::load(Config& cfg) {
           "in [0.005, 1] metres");
   insertion.load(cfg, "grid");
   matcher.load(cfg, "scan_matcher");
+  if (insertion.range_from_matcher) insertion.max_range = matcher.max_range;
   // Log-odds are clamped at p_clamp: a threshold at or above it is never
   // reached, and every scan would fall back to odometry.
   require(matcher.occupied_probability < insertion.p_clamp, "scan_matcher",

@@ -16,6 +16,9 @@ struct InsertionOptions {
   double p_clamp = 0.97;     // log-odds are clamped to logit(+-p_clamp)
   double max_range = 20.0;   // beams longer than this mark free space only
                              // up to it, with no hit (far hits are noisy)
+  // `max_insertion_range = auto` in the configuration (the default): the
+  // scan matcher's max_range, whatever it resolves to (its owner sets it).
+  bool range_from_matcher = true;
 
   void load(Config& cfg, const std::string& section = "grid");
   // Scaled integer log-odds increments.

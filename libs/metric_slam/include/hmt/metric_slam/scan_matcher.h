@@ -23,6 +23,10 @@ constexpr int kMaxWindow = 5;
 
 struct MatcherOptions {
   double max_range = 20.0;          // beams longer than this are not matched
+  // `max_range = auto` in the configuration (the default): max_range is
+  // derived from the log's ranges when it is read (matching_range.h); until
+  // then it holds the rule's floor, kMinMatchingRange.
+  bool range_from_scans = true;
   int beam_skip = 0;                // use every (skip+1)-th beam
   int window = 1;                   // search radius in cells
   double sigma = 0.05;              // likelihood field std dev (m)
