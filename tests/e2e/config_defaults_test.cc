@@ -3,6 +3,8 @@
 // on them, and `--version` says which program this is.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -84,6 +86,54 @@ TEST_F(ConfigDefaults, PartitionWithoutConfigIsTheDefaultIniRun) {
   EXPECT_EQ(version.exit_code, 0);
   EXPECT_EQ(version.out.rfind(std::string("hmt-partition ") + HMT_VERSION_TEXT, 0), 0u)
       << version.out;
+}
+
+// [scan_matcher] max_range = auto follows the log's ranges: 20 m for an
+// indoor log, the band where the returns are for one whose walls stand far
+// off; a number fixes it.
+TEST_F(ConfigDefaults, TheMatchingRangeFollowsTheLogsRanges) {
+  // A robot creeping across a 100 x 100 m yard: its 181 beams hit the
+  // yard's walls 40-70 m away.
+  const std::string yard = dir_ + "/yard.log";
+  {
+    std::ofstream f(yard);
+    for (int k = 0; k < 40; ++k) {
+      const double x = 0.2 * k;
+      f << "FLASER 181";
+      for (int i = 0; i < 181; ++i) {
+        const double a = (i - 90) * M_PI / 180.0;
+        const double c = std::cos(a), s = std::sin(a);
+        double r = 1e9;
+        if (c > 1e-9) r = std::min(r, (50.0 - x) / c);
+        if (s > 1e-9) r = std::min(r, 50.0 / s);
+        if (s < -1e-9) r = std::min(r, -50.0 / s);
+        f << ' ' << std::min(r, 81.9);
+      }
+      f << ' ' << x << " 0 0 " << x << " 0 0 " << 1.0 + k << " sim " << 1.0 + k << "\n";
+    }
+  }
+  const auto range_of = [&](const std::string& input, const std::string& sets,
+                            const std::string& out) {
+    const AppResult r = run_app("run --quiet --input '" + input + "' --set output.png=false " +
+                                    sets + " --out '" + dir_ + "/" + out + "'",
+                                dir_);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(slurp(dir_ + "/" + out + "/summary.json"));
+    return std::make_pair(j.at("matching_range_m").get<double>(), r.err);
+  };
+  const auto [far, far_err] = range_of(yard, "", "yard");
+  EXPECT_GT(far, 45.0);
+  EXPECT_LT(far, 72.0);
+  EXPECT_NE(far_err.find("[scan_matcher] max_range = auto: " + std::to_string(static_cast<int>(far)) +
+                         " m"),
+            std::string::npos)
+      << far_err;
+  const auto [fixed, fixed_err] = range_of(yard, "--set scan_matcher.max_range=20", "fixed");
+  EXPECT_EQ(fixed, 20.0);
+  EXPECT_EQ(fixed_err.find("max_range = auto"), std::string::npos) << fixed_err;
+  const auto [indoor, indoor_err] =
+      range_of("datasets/edmonton.log.gz", "--set input.max_steps=30", "indoor");
+  EXPECT_EQ(indoor, 20.0) << indoor_err;
 }
 
 TEST_F(ConfigDefaults, FilesAndSetsLayerOnTheDefaults) {

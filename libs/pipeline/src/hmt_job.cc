@@ -254,6 +254,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, InputSteps& steps, const LogOpe
   j["input"] = source;
   j["particles"] = opt.rbpf.particles;
   j["area_tau"] = opt.area.partition.tau;
+  j["matching_range_m"] = opt.rbpf.matcher.max_range;
   j["peak_map_memory_mb"] = peak_map_bytes / kMB;
   j["framework_mode"] =
       opt.framework.mode == framework::Mode::kLive ? "live" : "deterministic";
