@@ -1,0 +1,161 @@
+#!/usr/bin/python3
+"""Writes a simulated outdoor log, for what the shared logs (all indoors) do
+not test: a campus of 5 x 4 blocks (80 x 60 m, streets 16 m wide) with one
+to three buildings per block set back from the street, lawns between them,
+and trees along the kerbs; a robot drives a 1.6 km tour along the streets
+with two loops (it comes back along its first street at the end), one scan
+per metre or so, a 180 degree laser of 181 beams reaching 80 m (no return
+written as 81.91, as CARMEN logs do), range noise 2 cm.
+
+Odometry: each step's motion with its translation scaled by 1 + s + noise
+(s = 1 % fair, 2 % harsh), lateral noise, heading noise, and a heading drift
+of 0.001 (fair) or 0.004 (harsh) rad per metre.
+
+Outputs OUT.log.gz (CARMEN FLASER lines) and OUT.reference.txt.gz (the true
+poses, "t x y theta" per scan, for scripts/ate.py).
+
+Usage: sim_campus.py OUT [--seed N] [--odometry fair|harsh]
+"""
+import argparse
+import gzip
+import math
+
+import numpy as np
+
+BX, BY, ST = 80.0, 60.0, 16.0  # block size, street width (m)
+NX, NY = 5, 4
+MAX_RANGE, NO_RETURN = 80.0, 81.91
+
+
+def world(rng, harsh):
+    segs = []
+
+    def poly(pts):
+        for i in range(len(pts)):
+            a, b = pts[i], pts[(i + 1) % len(pts)]
+            segs.append((a[0], a[1], b[0], b[1]))
+
+    for i in range(NX):
+        for j in range(NY):
+            x0, y0 = i * (BX + ST), j * (BY + ST)
+            n = rng.integers(1, 4) if harsh else rng.integers(2, 4)
+            xs = np.sort(rng.uniform(x0 + 3, x0 + BX - 3, 2 * n))
+            for k in range(n):
+                a, b = xs[2 * k], xs[2 * k + 1]
+                if b - a < 8:
+                    continue
+                c, d = rng.uniform(y0 + 2, y0 + 12), rng.uniform(y0 + BY - 12, y0 + BY - 2)
+                if rng.random() < 0.5:  # an L-shaped building
+                    m, h = rng.uniform(a + 3, b - 3), rng.uniform(c + 3, d - 3)
+                    poly([(a, c), (b, c), (b, h), (m, h), (m, d), (a, d)])
+                else:
+                    poly([(a, c), (b, c), (b, d), (a, d)])
+
+    def tree(cx, cy, r):
+        poly([(cx + r * math.cos(math.pi * t / 3), cy + r * math.sin(math.pi * t / 3))
+              for t in range(6)])
+
+    W, H = NX * (BX + ST) - ST, NY * (BY + ST) - ST
+    for j in range(NY + 1):
+        yc, x = j * (BY + ST) - ST / 2, -ST
+        while x < W + ST:
+            x += rng.uniform(8, 20)
+            for side in (-1, 1):
+                if rng.random() < 0.6:
+                    tree(x + rng.normal(0, 1), yc + side * (ST / 2 - 1), rng.uniform(0.15, 0.4))
+    for i in range(NX + 1):
+        xc, y = i * (BX + ST) - ST / 2, -ST
+        while y < H + ST:
+            y += rng.uniform(8, 20)
+            for side in (-1, 1):
+                if rng.random() < 0.6:
+                    tree(xc + side * (ST / 2 - 1), y + rng.normal(0, 1), rng.uniform(0.15, 0.4))
+    return np.array(segs)
+
+
+def drive(rng):
+    def node(i, j):
+        return np.array([i * (BX + ST) - ST / 2, j * (BY + ST) - ST / 2])
+
+    route = [(0, 0), (5, 0), (5, 4), (2, 4), (2, 0), (0, 0), (0, 1)]
+    wps = [node(*r) for r in route]
+    poses = []
+    p = wps[0].copy()
+    th = math.atan2(*(wps[1] - wps[0])[::-1])
+    for w in wps[1:]:
+        while True:
+            d = w - p
+            if np.hypot(*d) < 1.2:
+                break
+            err = math.atan2(math.sin(math.atan2(d[1], d[0]) - th), math.cos(math.atan2(d[1], d[0]) - th))
+            step = rng.uniform(0.8, 1.2) if abs(err) < 0.3 else 0.5
+            th += max(-0.35, min(0.35, err)) + rng.normal(0, 0.01)
+            p = p + step * np.array([math.cos(th), math.sin(th)])
+            poses.append((p[0], p[1], th))
+    return np.array(poses)
+
+
+def raycast(S, x, y, th, rng):
+    ang = th + np.radians(np.arange(181) - 90.0)
+    dx, dy = np.cos(ang), np.sin(ang)
+    near = np.minimum(np.hypot(S[:, 0] - x, S[:, 1] - y), np.hypot(S[:, 2] - x, S[:, 3] - y)) < MAX_RANGE + 100
+    s = S[near]
+    ex, ey = s[:, 2] - s[:, 0], s[:, 3] - s[:, 1]
+    wx, wy = s[:, 0] - x, s[:, 1] - y
+    den = dx[:, None] * ey[None, :] - dy[:, None] * ex[None, :]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = (wx[None, :] * ey[None, :] - wy[None, :] * ex[None, :]) / den
+        u = (wx[None, :] * dy[:, None] - wy[None, :] * dx[:, None]) / den
+    ok = (np.abs(den) > 1e-12) & (t > 0.05) & (u >= 0) & (u <= 1)
+    t = np.where(ok, t, np.inf).min(axis=1)
+    r = t + rng.normal(0, 0.02, t.shape)
+    r[~np.isfinite(t) | (t > MAX_RANGE)] = NO_RETURN
+    return r
+
+
+def odometry(poses, rng, harsh):
+    scale, drift = (0.02, 0.004) if harsh else (0.01, 0.001)
+    odo = [np.zeros(3)]
+    for k in range(1, len(poses)):
+        a, b = poses[k - 1], poses[k]
+        c, s = math.cos(a[2]), math.sin(a[2])
+        dx, dy = b[0] - a[0], b[1] - a[1]
+        lx, ly = c * dx + s * dy, -s * dx + c * dy
+        dth = math.atan2(math.sin(b[2] - a[2]), math.cos(b[2] - a[2]))
+        d = math.hypot(lx, ly)
+        lx *= 1 + scale + rng.normal(0, 0.02 + 0.01 * harsh)
+        ly += rng.normal(0, (0.01 + 0.01 * harsh) * d)
+        dth += rng.normal(0, (0.005 + 0.005 * harsh) + (0.03 + 0.02 * harsh) * abs(dth)) + drift * d
+        o = odo[-1]
+        co, so = math.cos(o[2]), math.sin(o[2])
+        odo.append(np.array([o[0] + co * lx - so * ly, o[1] + so * lx + co * ly, o[2] + dth]))
+    return odo
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("out")
+    ap.add_argument("--seed", type=int, default=3)
+    ap.add_argument("--odometry", choices=("fair", "harsh"), default="fair")
+    a = ap.parse_args()
+    rng = np.random.default_rng(a.seed)
+    harsh = a.odometry == "harsh"
+    S = world(rng, harsh)
+    poses = drive(rng)
+    odo = odometry(poses, rng, harsh)
+    with gzip.open(a.out + ".log.gz", "wt") as f, gzip.open(a.out + ".reference.txt.gz", "wt") as g:
+        for k, (x, y, th) in enumerate(poses):
+            r = raycast(S, x, y, th, rng)
+            o = odo[k]
+            ot = math.atan2(math.sin(o[2]), math.cos(o[2]))
+            t = 100.0 + 2.0 * k
+            f.write("FLASER 181 " + " ".join("%.3f" % v for v in r) +
+                    " %.4f %.4f %.5f %.4f %.4f %.5f %.3f sim %.3f\n" % (o[0], o[1], ot, o[0], o[1], ot, t, t))
+            g.write("%.3f %.4f %.4f %.5f\n" % (t, x, y, math.atan2(math.sin(th), math.cos(th))))
+    length = float(np.sum(np.hypot(*np.diff(poses[:, :2], axis=0).T)))
+    print("%d scans, %d wall segments, path %.0f m: %s.log.gz, %s.reference.txt.gz"
+          % (len(poses), len(S), length, a.out, a.out))
+
+
+if __name__ == "__main__":
+    main()

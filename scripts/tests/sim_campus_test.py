@@ -1,0 +1,94 @@
+#!/usr/bin/python3
+"""Tests of scripts/sim_campus.py: the log it writes is a CARMEN log of the
+README's format whose scans agree with its reference poses.
+
+Run directly or through ctest (sim_campus_script).
+"""
+import gzip
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCRIPT = os.path.join(HERE, "..", "sim_campus.py")
+
+
+def read(prefix):
+    scans, odo, stamps = [], [], []
+    with gzip.open(prefix + ".log.gz", "rt") as f:
+        for line in f:
+            s = line.split()
+            assert s[0] == "FLASER", line[:40]
+            n = int(s[1])
+            assert len(s) == n + 11, len(s)
+            scans.append([float(v) for v in s[2:2 + n]])
+            odo.append([float(v) for v in s[2 + n + 3:2 + n + 6]])
+            stamps.append(float(s[2 + n + 6]))
+    with gzip.open(prefix + ".reference.txt.gz", "rt") as f:
+        ref = [[float(v) for v in line.split()] for line in f]
+    return scans, odo, stamps, ref
+
+
+class SimCampus(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = tempfile.TemporaryDirectory()
+        cls.out = {}
+        for kind in ("fair", "harsh"):
+            prefix = os.path.join(cls.dir.name, kind)
+            r = subprocess.run([sys.executable, SCRIPT, prefix, "--seed", "3", "--odometry", kind],
+                               capture_output=True, text=True)
+            assert r.returncode == 0, r.stderr
+            cls.out[kind] = read(prefix)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.dir.cleanup()
+
+    def test_a_scan_per_reference_pose_on_one_clock(self):
+        scans, odo, stamps, ref = self.out["fair"]
+        self.assertGreater(len(scans), 1500)
+        self.assertEqual(len(scans), len(ref))
+        self.assertTrue(all(len(s) == 181 for s in scans))
+        self.assertEqual(stamps, [r[0] for r in ref])
+        self.assertEqual(odo[0], [0.0, 0.0, 0.0])
+
+    def test_an_outdoor_scene_far_returns_and_no_returns(self):
+        scans = self.out["fair"][0]
+        r = [v for s in scans for v in s]
+        valid = [v for v in r if v < 81.0]
+        self.assertGreater(r.count(81.91), 0.3 * len(r))  # open space
+        far = sum(1 for v in valid if v > 20.0) / len(valid)
+        self.assertGreater(far, 0.5)  # most returns beyond 20 m
+        self.assertLessEqual(max(valid), 80.5)
+
+    def test_the_tour_is_long_and_closes_on_its_first_street(self):
+        ref = self.out["fair"][3]
+        length = sum(math.hypot(b[1] - a[1], b[2] - a[2]) for a, b in zip(ref, ref[1:]))
+        self.assertGreater(length, 1500)
+        # The last stretch drives back along the first street (y = -8).
+        near_start = [p for p in ref[-300:] if abs(p[2] - ref[0][2]) < 1.0 and p[1] < 150]
+        self.assertGreater(len(near_start), 50)
+
+    def test_harsh_odometry_drifts_more_than_fair(self):
+        def heading_drift(kind):
+            # Unwrapped heading of the odometry minus that of the truth, at the end.
+            _, odo, _, ref = self.out[kind]
+            def turned(th):
+                return sum(math.atan2(math.sin(b - a), math.cos(b - a)) for a, b in zip(th, th[1:]))
+            return turned([o[2] for o in odo]) - turned([r[3] for r in ref])
+        fair, harsh = heading_drift("fair"), heading_drift("harsh")
+        self.assertGreater(fair, 1.0)  # 0.001 rad per metre over 1.6 km, worth correcting
+        self.assertGreater(harsh, 3.0 * fair)
+
+    def test_the_same_seed_writes_the_same_log(self):
+        prefix = os.path.join(self.dir.name, "again")
+        subprocess.run([sys.executable, SCRIPT, prefix, "--seed", "3"], check=True, capture_output=True)
+        self.assertEqual(read(prefix), self.out["fair"])
+
+
+if __name__ == "__main__":
+    unittest.main()
