@@ -55,21 +55,22 @@ def world(rng, harsh):
         poly([(cx + r * math.cos(math.pi * t / 3), cy + r * math.sin(math.pi * t / 3))
               for t in range(6)])
 
+    def kerbs(centre, length, vertical):
+        # Trees along both kerbs of a street, every 8-20 m, each side 60 % of the time.
+        t = -ST
+        while t < length + ST:
+            t += rng.uniform(8, 20)
+            for side in (-1, 1):
+                if rng.random() < 0.6:
+                    along, across = t + rng.normal(0, 1), centre + side * (ST / 2 - 1)
+                    r = rng.uniform(0.15, 0.4)
+                    tree(across, along, r) if vertical else tree(along, across, r)
+
     W, H = NX * (BX + ST) - ST, NY * (BY + ST) - ST
     for j in range(NY + 1):
-        yc, x = j * (BY + ST) - ST / 2, -ST
-        while x < W + ST:
-            x += rng.uniform(8, 20)
-            for side in (-1, 1):
-                if rng.random() < 0.6:
-                    tree(x + rng.normal(0, 1), yc + side * (ST / 2 - 1), rng.uniform(0.15, 0.4))
+        kerbs(j * (BY + ST) - ST / 2, W, False)
     for i in range(NX + 1):
-        xc, y = i * (BX + ST) - ST / 2, -ST
-        while y < H + ST:
-            y += rng.uniform(8, 20)
-            for side in (-1, 1):
-                if rng.random() < 0.6:
-                    tree(xc + side * (ST / 2 - 1), y + rng.normal(0, 1), rng.uniform(0.15, 0.4))
+        kerbs(i * (BX + ST) - ST / 2, H, True)
     return np.array(segs)
 
 
