@@ -40,13 +40,7 @@ void AreaOptions::load(Config& cfg, const std::string& s) {
   sso.descriptor_threshold =
       cfg.get_double(s, "descriptor_threshold", sso.descriptor_threshold);
   // tau: a number, or "auto" (derived from the sensor, area_size.h).
-  if (cfg.has(s, "tau") ? cfg.get_string(s, "tau", "") == "auto" : partition.tau_from_sensor) {
-    partition.tau_from_sensor = true;
-    cfg.get_string(s, "tau", "auto");  // recorded in the effective configuration
-  } else {
-    partition.tau_from_sensor = false;
-    partition.tau = cfg.get_double(s, "tau", partition.tau);
-  }
+  cfg.get_double_or_auto(s, "tau", &partition.tau, &partition.tau_from_sensor);
   partition.min_cluster_size =
       cfg.get_int(s, "min_cluster_size", partition.min_cluster_size);
   partition.split_method = parse_split_method(

@@ -150,6 +150,17 @@ const Config::Entry* Config::lookup(const std::string& section,
   return &k->second;
 }
 
+void Config::get_double_or_auto(const std::string& section, const std::string& key,
+                                double* value, bool* is_auto) {
+  if (has(section, key) ? get_string(section, key, "") == "auto" : *is_auto) {
+    *is_auto = true;
+    get_string(section, key, "auto");  // recorded in the effective configuration
+  } else {
+    *is_auto = false;
+    *value = get_double(section, key, *value);
+  }
+}
+
 bool Config::has(const std::string& section, const std::string& key) const {
   auto s = entries_.find(section);
   return s != entries_.end() && s->second.count(key) > 0;

@@ -100,3 +100,31 @@ TEST(Config, MissingFileIsConfigError) {
 
 }  // namespace
 }  // namespace hmt
+
+namespace hmt {
+namespace {
+
+TEST(Config, DoubleOrAutoTakesEitherAndRecordsIt) {
+  Config cfg = Config::from_string("[s]\na = auto\nb = 2.5\nc = far\n", "t.ini");
+  double a = 1.0, b = 1.0, c = 1.0, d = 7.0, e = 8.0;
+  bool a_auto = false, b_auto = true, c_auto = true, d_auto = true, e_auto = false;
+  cfg.get_double_or_auto("s", "a", &a, &a_auto);
+  EXPECT_TRUE(a_auto);
+  EXPECT_EQ(a, 1.0);
+  cfg.get_double_or_auto("s", "b", &b, &b_auto);
+  EXPECT_FALSE(b_auto);
+  EXPECT_EQ(b, 2.5);
+  cfg.get_double_or_auto("s", "d", &d, &d_auto);  // absent: the default, auto
+  EXPECT_TRUE(d_auto);
+  cfg.get_double_or_auto("s", "e", &e, &e_auto);  // absent: the default, a number
+  EXPECT_FALSE(e_auto);
+  EXPECT_EQ(e, 8.0);
+  const std::string eff = cfg.effective_ini();
+  EXPECT_NE(eff.find("a = auto"), std::string::npos) << eff;
+  EXPECT_NE(eff.find("d = auto"), std::string::npos) << eff;
+  EXPECT_NE(eff.find("e = 8"), std::string::npos) << eff;
+  EXPECT_THROW(cfg.get_double_or_auto("s", "c", &c, &c_auto), ConfigError);
+}
+
+}  // namespace
+}  // namespace hmt

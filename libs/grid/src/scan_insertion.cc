@@ -114,15 +114,7 @@ void InsertionOptions::load(Config& cfg, const std::string& s) {
   p_free = cfg.get_double(s, "p_free", p_free);
   p_clamp = cfg.get_double(s, "p_clamp", p_clamp);
   // A number, or "auto": the matcher's range (set by the options' owner).
-  if (cfg.has(s, "max_insertion_range")
-          ? cfg.get_string(s, "max_insertion_range", "") == "auto"
-          : range_from_matcher) {
-    range_from_matcher = true;
-    cfg.get_string(s, "max_insertion_range", "auto");  // recorded in the effective configuration
-  } else {
-    range_from_matcher = false;
-    max_range = cfg.get_double(s, "max_insertion_range", max_range);
-  }
+  cfg.get_double_or_auto(s, "max_insertion_range", &max_range, &range_from_matcher);
   require(p_occupied > 0.5 && p_occupied < 1.0, s, "p_occupied", "in (0.5, 1)");
   require(p_free > 0.0 && p_free < 0.5, s, "p_free", "in (0, 0.5)");
   require(p_clamp > p_occupied && p_clamp <= 0.998, s, "p_clamp",

@@ -56,13 +56,7 @@ uint64_t cell_key(grid::CellIndex c) {
 
 void MatcherOptions::load(Config& cfg, const std::string& s) {
   // max_range: a number, or "auto" (from the log's ranges, matching_range.h).
-  if (cfg.has(s, "max_range") ? cfg.get_string(s, "max_range", "") == "auto" : range_from_scans) {
-    range_from_scans = true;
-    cfg.get_string(s, "max_range", "auto");  // recorded in the effective configuration
-  } else {
-    range_from_scans = false;
-    max_range = cfg.get_double(s, "max_range", max_range);
-  }
+  cfg.get_double_or_auto(s, "max_range", &max_range, &range_from_scans);
   beam_skip = cfg.get_int(s, "beam_skip", beam_skip);
   window = cfg.get_int(s, "window", window);
   sigma = cfg.get_double(s, "sigma", sigma);

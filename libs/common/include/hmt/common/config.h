@@ -57,6 +57,13 @@ class Config {
 
   bool has(const std::string& section, const std::string& key) const;
 
+  // A key that takes a number or "auto" (a value derived later, e.g. from
+  // the log). On entry *is_auto says which the default is; on return,
+  // which was given, with a number in *value (left as is for "auto"). The
+  // effective configuration records "auto" or the number used.
+  void get_double_or_auto(const std::string& section, const std::string& key, double* value,
+                          bool* is_auto);
+
   // Every entry's value as given (not read or checked), by section and key.
   std::map<std::string, std::map<std::string, std::string>> values() const;
   // Every (section, key) given, by the text or by overrides, sorted.
