@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # Sets up, builds, and runs HMT-SLAM on the embedded Malaga one-loop log.
+# OUT: the output folder (default <repo>/out/malaga); a relative OUT is taken
+# from where the script is called, as any path a user types.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+repo=$(cd "$(dirname "$0")/.." && pwd)
+OUT=$(realpath -m "${OUT:-$repo/out/malaga}")
+cd "$repo"
 bash scripts/setup.sh
 bash scripts/build.sh
-OUT=${OUT:-out/malaga}
 ./build/apps/hmt-slam run --config config/default.ini --out "$OUT" --report
-echo "map image: $(pwd)/$OUT/map.png"
-echo "report (open in a browser): $(pwd)/$OUT/report/index.html"
+echo "map image: $OUT/map.png"
+echo "report (open in a browser): $OUT/report/index.html"
