@@ -37,6 +37,14 @@ std::vector<Pose2D> match_starts(const PoseGaussian& prior, double k) {
   return starts;
 }
 
+// An upper bound on the bytes of a map's match field (one per cell over its
+// obstacles' bounding box): the cells of its tiles' bounding box.
+size_t field_bytes_bound(const grid::OccupancyGrid& map) {
+  grid::CellIndex lo, hi;
+  if (!map.bounds(&lo, &hi)) return 0;
+  return static_cast<size_t>(hi.x - lo.x + 1) * static_cast<size_t>(hi.y - lo.y + 1);
+}
+
 }  // namespace
 
 TransitionModel::TransitionModel(const TsbiOptions& options,
@@ -428,7 +436,7 @@ std::vector<std::shared_ptr<const MatchField>> TransitionModel::fields_for(
 
 std::vector<std::shared_ptr<const CostStack>> TransitionModel::stacks_for(
     const topology::HmtMap& map, const std::vector<Outcome>& areas,
-    const std::vector<bool>& needed) {
+    const std::vector<std::shared_ptr<const MatchField>>& fields) {
   ++events_;
   // Stacks of maps whose fields went (no hypothesis holds the map) go too.
   for (auto it = stacks_.begin(); it != stacks_.end();) {
@@ -436,25 +444,25 @@ std::vector<std::shared_ptr<const CostStack>> TransitionModel::stacks_for(
     it = f != fields_.end() && f->second.field == it->second.field ? std::next(it)
                                                                     : stacks_.erase(it);
   }
-  std::vector<std::shared_ptr<const grid::OccupancyGrid>> missing;
+  std::vector<size_t> missing;  // indices into `areas`, one per map
   for (size_t i = 0; i < areas.size(); ++i) {
-    if (!needed[i]) continue;
+    if (!fields[i]) continue;
     const auto& m = map.area(areas[i].area).map;
     const auto it = stacks_.find(m.get());
     if (it != stacks_.end())
       it->second.used = events_;
-    else if (std::find(missing.begin(), missing.end(), m) == missing.end())
-      missing.push_back(m);
+    else if (std::none_of(missing.begin(), missing.end(), [&](size_t k) {
+               return map.area(areas[k].area).map == m;
+             }))
+      missing.push_back(i);
   }
   std::vector<std::shared_ptr<const CostStack>> built(missing.size());
-  for_each_index(missing.size(), [&](size_t i) {
-    built[i] = make_stack(*fields_.at(missing[i].get()).field);
-  });
-  for (size_t i = 0; i < missing.size(); ++i)
-    stacks_[missing[i].get()] = {fields_.at(missing[i].get()).field, built[i], events_};
+  for_each_index(missing.size(), [&](size_t k) { built[k] = make_stack(*fields[missing[k]]); });
+  for (size_t k = 0; k < missing.size(); ++k)
+    stacks_[map.area(areas[missing[k]].area).map.get()] = {fields[missing[k]], built[k], events_};
   std::vector<std::shared_ptr<const CostStack>> out(areas.size());
   for (size_t i = 0; i < areas.size(); ++i)
-    if (needed[i]) out[i] = stacks_.at(map.area(areas[i].area).map.get()).stack;
+    if (fields[i]) out[i] = stacks_.at(map.area(areas[i].area).map.get()).stack;
   // Over the budget: the least recently used go, but not those this event
   // uses (`out` holds them).
   evict_least_recent(stacks_, static_cast<size_t>(opt_.bnb_cache_mb) << 20, events_,
@@ -481,40 +489,69 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
   std::vector<Outcome> outcomes(1);
   outcomes[0].log_f = opt_.log_eta;
   std::vector<Outcome> areas = reachable_areas(map, current, robot, obs);
-  const auto fields = fields_for(map, areas);
   // Each area and each of its starts is computed on its own, and the modes
   // are summed in start order: the order of the threads cannot matter.
+  //
+  // The searches are set up a group of areas at a time: an area's match
+  // field (for the bound and the wide search) and cost stack (the wide
+  // search's) live only while its search is set up, unless the caches keep
+  // them. So an event with many candidates holds at most the caches'
+  // budgets plus a group's fields and a stack per thread, not every
+  // candidate's: outdoors, areas of 100 m and more have fields of 5-10 MB
+  // and stacks of 30-50 MB (on the simulated campus the peak went from 372
+  // to 280 MB), while indoors a group is usually the whole event.
   std::vector<Search> searches(areas.size());
-  for_each_index(areas.size(), [&](size_t i) {
-    searches[i] = prepare_search(*map.area(areas[i].area).map, *fields[i], areas[i].prior, obs);
-  });
-  std::vector<bool> needs_stack(areas.size());
-  for (size_t i = 0; i < areas.size(); ++i)
-    needs_stack[i] = searches[i].wide && opt_.search == TsbiOptions::WideSearch::kBnb;
-  // The wide searches, a few areas at a time (as many as there are
-  // threads): an area's cost stack lives only while it is searched, unless
-  // the cache keeps it, so an event with many wide candidates holds at most
-  // the cache's budget plus one stack per thread.
   const size_t group = pool_ ? static_cast<size_t>(std::max(pool_->threads(), 1)) : 1;
-  std::vector<size_t> wide, narrow;
-  for (size_t i = 0; i < areas.size(); ++i) (needs_stack[i] ? wide : narrow).push_back(i);
-  for_each_index(narrow.size(), [&](size_t j) {
-    const size_t i = narrow[j];
-    add_wide_starts(&searches[i], *fields[i], nullptr, obs);
-  });
-  for (size_t first = 0; first < wide.size(); first += group) {
-    const size_t end = std::min(first + group, wide.size());
-    std::vector<bool> now(areas.size(), false);
-    for (size_t j = first; j < end; ++j) now[wide[j]] = true;
-    const auto stacks = stacks_for(map, areas, now);
+  // Areas whose wide search waits for its cost stack, with their fields;
+  // searched `group` at a time (a stack per thread).
+  std::vector<std::shared_ptr<const MatchField>> waiting(areas.size());
+  size_t waiting_count = 0;
+  auto search_waiting = [&] {
+    std::vector<size_t> all;
+    for (size_t i = 0; i < areas.size(); ++i)
+      if (waiting[i]) all.push_back(i);
+    for (size_t from = 0; from < all.size(); from += group) {
+      const size_t to = std::min(from + group, all.size());
+      std::vector<std::shared_ptr<const MatchField>> now(areas.size());
+      for (size_t k = from; k < to; ++k) now[all[k]] = waiting[all[k]];
+      const auto stacks = stacks_for(map, areas, now);
+      for_each_index(to - from, [&](size_t j) {
+        const size_t i = all[from + j];
+        add_wide_starts(&searches[i], *waiting[i], stacks[i].get(), obs);
+      });
+      for (size_t k = from; k < to; ++k) waiting[all[k]] = nullptr;
+    }
+    waiting_count = 0;
+  };
+  // A group: areas in order until their fields would pass the field
+  // cache's budget, and at least one area per thread.
+  const size_t budget = static_cast<size_t>(opt_.field_cache_mb) << 20;
+  for (size_t first = 0, end = 0; first < areas.size(); first = end) {
+    for (size_t bytes = 0; end < areas.size(); ++end) {
+      const size_t b = field_bytes_bound(*map.area(areas[end].area).map);
+      if (end - first >= group && bytes + b > budget) break;
+      bytes += b;
+    }
+    const std::vector<Outcome> some(areas.begin() + static_cast<std::ptrdiff_t>(first),
+                                    areas.begin() + static_cast<std::ptrdiff_t>(end));
+    const auto fields = fields_for(map, some);
     for_each_index(end - first, [&](size_t j) {
-      const size_t i = wide[first + j];
-      add_wide_starts(&searches[i], *fields[i], stacks[i].get(), obs);
+      const size_t i = first + j;
+      searches[i] = prepare_search(*map.area(areas[i].area).map, *fields[j], areas[i].prior, obs);
+      if (!(searches[i].wide && opt_.search == TsbiOptions::WideSearch::kBnb))
+        add_wide_starts(&searches[i], *fields[j], nullptr, obs);
     });
+    for (size_t i = first; i < end; ++i)
+      if (searches[i].wide && opt_.search == TsbiOptions::WideSearch::kBnb) {
+        waiting[i] = fields[i - first];
+        ++waiting_count;
+      }
+    if (waiting_count >= group) search_waiting();
   }
+  if (waiting_count > 0) search_waiting();
   // Nothing needed any more: the cache drops maps no hypothesis holds and
   // comes back within its budget.
-  stacks_for(map, areas, std::vector<bool>(areas.size(), false));
+  stacks_for(map, areas, std::vector<std::shared_ptr<const MatchField>>(areas.size()));
   std::vector<std::pair<size_t, size_t>> jobs;  // (area, start)
   std::vector<std::vector<Match>> matches(areas.size());
   for (size_t i = 0; i < areas.size(); ++i) {

@@ -43,6 +43,28 @@ TEST(MatchField, DistanceIsChebyshevToTheNearestObstacle) {
   EXPECT_EQ(f.distance_at(3 * 0.05 + 0.01, 4 * 0.05 + 0.04), 0);
 }
 
+TEST(MatchField, ScatteredObstaclesGiveTheBruteForceDistancesCappedAtFar) {
+  // A box of 640 x 90 cells: obstacles at its two ends and a cluster at the
+  // left, so that the middle lies farther than kFar from all of them.
+  grid::OccupancyGrid g(0.05);
+  Random rng(7);
+  std::vector<grid::CellIndex> obstacles = {{0, 0}, {639, 89}};
+  for (int k = 0; k < 150; ++k)
+    obstacles.push_back({static_cast<int>(rng.uniform() * 120), static_cast<int>(rng.uniform() * 90)});
+  for (const auto& c : obstacles) g.mutable_logodds(c) = 40;
+  const MatchField f(g, kOccupied);
+  int capped = 0;
+  for (int y = 0; y < 90; ++y)
+    for (int x = 0; x < 640; ++x) {
+      int truth = MatchField::kFar;
+      for (const auto& c : obstacles)
+        truth = std::min(truth, std::max(std::abs(x - c.x), std::abs(y - c.y)));
+      ASSERT_EQ(f.distance(x, y), truth) << x << "," << y;
+      capped += truth == MatchField::kFar;
+    }
+  EXPECT_GT(capped, 0);
+}
+
 TEST(MatchField, AMapWithoutObstaclesIsFarEverywhere) {
   grid::OccupancyGrid g(0.05);
   g.mutable_logodds({1, 1}) = -20;

@@ -146,11 +146,11 @@ class TransitionModel {
   // parallel) and cached. Fields of maps no hypothesis holds are dropped.
   std::vector<std::shared_ptr<const MatchField>> fields_for(
       const topology::HmtMap& map, const std::vector<Outcome>& areas);
-  // The cost stack of each area whose search is wide (null for the
-  // others): from the cache, or built (in parallel) and cached.
+  // The cost stack of each area given its match field in `fields` (null
+  // for the others): from the cache, or built (in parallel) and cached.
   std::vector<std::shared_ptr<const CostStack>> stacks_for(
       const topology::HmtMap& map, const std::vector<Outcome>& areas,
-      const std::vector<bool>& needed);
+      const std::vector<std::shared_ptr<const MatchField>>& fields);
   std::shared_ptr<const CostStack> make_stack(const MatchField& field) const;
   // F(gamma) in three steps, so that evaluate() can run the matcher
   // starts of every candidate area in one parallel loop (an event often
