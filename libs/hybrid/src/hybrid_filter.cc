@@ -431,22 +431,22 @@ std::optional<AlignmentJob> HybridFilter::accept_if_dominant() {
 
 namespace {
 
-// Whether `a` holds `prefix`'s first n closures first: records copied from
-// a common ancestor, so bit for bit the same.
-bool starts_with(const std::vector<tlca::ClosureRecord>& a,
-                 const std::vector<tlca::ClosureRecord>& prefix, size_t n) {
-  if (a.size() < n) return false;
-  for (size_t i = 0; i < n; ++i) {
-    const tlca::ClosureRecord& x = a[i];
-    const tlca::ClosureRecord& y = prefix[i];
+// How many of `a`'s first closures are `b`'s first: records copied from a
+// common ancestor, so bit for bit the same.
+size_t common_prefix(const std::vector<tlca::ClosureRecord>& a,
+                     const std::vector<tlca::ClosureRecord>& b) {
+  size_t n = 0;
+  for (; n < a.size() && n < b.size(); ++n) {
+    const tlca::ClosureRecord& x = a[n];
+    const tlca::ClosureRecord& y = b[n];
     if (x.from != y.from || x.to != y.to || x.step != y.step ||
         x.measurement.mean.x != y.measurement.mean.x ||
         x.measurement.mean.y != y.measurement.mean.y ||
         x.measurement.mean.theta != y.measurement.mean.theta ||
         x.measurement.cov != y.measurement.cov)
-      return false;
+      break;
   }
-  return true;
+  return n;
 }
 
 }  // namespace
@@ -460,13 +460,16 @@ std::optional<AlignmentJob> HybridFilter::accept_shared_closures(const std::vect
   const std::vector<tlca::ClosureRecord>& mine = hyps_[best].pending_closures;
   // The longest run of the most probable hypothesis's first closures that
   // hypotheses of accept_probability in all hold.
+  std::vector<size_t> common(hyps_.size());
+  for (size_t i = 0; i < hyps_.size(); ++i)
+    common[i] = common_prefix(hyps_[i].pending_closures, mine);
   std::vector<char> holds(hyps_.size(), 0);
   double mass = 0.0;
   size_t n = mine.size();
   for (; n > 0; --n) {
     mass = 0.0;
     for (size_t i = 0; i < hyps_.size(); ++i) {
-      holds[i] = starts_with(hyps_[i].pending_closures, mine, n) ? 1 : 0;
+      holds[i] = common[i] >= n ? 1 : 0;
       if (holds[i]) mass += p[i];
     }
     if (mass >= opt_.tlca.accept_probability) break;
