@@ -496,10 +496,11 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
   // field (for the bound and the wide search) and cost stack (the wide
   // search's) live only while its search is set up, unless the caches keep
   // them. So an event with many candidates holds at most the caches'
-  // budgets plus a group's fields and a stack per thread, not every
-  // candidate's: outdoors, areas of 100 m and more have fields of 5-10 MB
-  // and stacks of 30-50 MB (on the simulated campus the peak went from 372
-  // to 280 MB), while indoors a group is usually the whole event.
+  // budgets, a group's fields, the fields of a few areas (fewer than one
+  // per thread) waiting for their wide search, and a stack per thread, not
+  // every candidate's: outdoors, areas of 100 m and more have fields of
+  // 5-10 MB and stacks of 30-50 MB (on the simulated campus the peak went
+  // from 372 to 269 MB), while indoors a group is usually the whole event.
   std::vector<Search> searches(areas.size());
   const size_t group = pool_ ? static_cast<size_t>(std::max(pool_->threads(), 1)) : 1;
   // Areas whose wide search waits for its cost stack, with their fields;
