@@ -98,12 +98,6 @@ TEST(Config, MissingFileIsConfigError) {
   EXPECT_THROW(Config::from_file("/nonexistent/x.ini"), ConfigError);
 }
 
-}  // namespace
-}  // namespace hmt
-
-namespace hmt {
-namespace {
-
 TEST(Config, DoubleOrAutoTakesEitherAndRecordsIt) {
   Config cfg = Config::from_string("[s]\na = auto\nb = 2.5\nc = far\n", "t.ini");
   double a = 1.0, b = 1.0, c = 1.0, d = 7.0, e = 8.0;

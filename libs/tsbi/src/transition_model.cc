@@ -503,26 +503,26 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
   // from 372 to 269 MB), while indoors a group is usually the whole event.
   std::vector<Search> searches(areas.size());
   const size_t group = pool_ ? static_cast<size_t>(std::max(pool_->threads(), 1)) : 1;
-  // Areas whose wide search waits for its cost stack, with their fields;
-  // searched `group` at a time (a stack per thread).
+  const auto needs_stack = [&](size_t i) {
+    return searches[i].wide && opt_.search == TsbiOptions::WideSearch::kBnb;
+  };
+  // Areas whose wide search waits for its cost stack (in order), with their
+  // fields by area; searched `group` at a time (a stack per thread).
+  std::vector<size_t> pending;
   std::vector<std::shared_ptr<const MatchField>> waiting(areas.size());
-  size_t waiting_count = 0;
-  auto search_waiting = [&] {
-    std::vector<size_t> all;
-    for (size_t i = 0; i < areas.size(); ++i)
-      if (waiting[i]) all.push_back(i);
-    for (size_t from = 0; from < all.size(); from += group) {
-      const size_t to = std::min(from + group, all.size());
+  auto search_pending = [&] {
+    for (size_t from = 0; from < pending.size(); from += group) {
+      const size_t to = std::min(from + group, pending.size());
       std::vector<std::shared_ptr<const MatchField>> now(areas.size());
-      for (size_t k = from; k < to; ++k) now[all[k]] = waiting[all[k]];
+      for (size_t k = from; k < to; ++k) now[pending[k]] = waiting[pending[k]];
       const auto stacks = stacks_for(map, areas, now);
       for_each_index(to - from, [&](size_t j) {
-        const size_t i = all[from + j];
+        const size_t i = pending[from + j];
         add_wide_starts(&searches[i], *waiting[i], stacks[i].get(), obs);
       });
-      for (size_t k = from; k < to; ++k) waiting[all[k]] = nullptr;
+      for (size_t k = from; k < to; ++k) waiting[pending[k]] = nullptr;
     }
-    waiting_count = 0;
+    pending.clear();
   };
   // A group: areas in order until their fields would pass the field
   // cache's budget, and at least one area per thread.
@@ -539,17 +539,16 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
     for_each_index(end - first, [&](size_t j) {
       const size_t i = first + j;
       searches[i] = prepare_search(*map.area(areas[i].area).map, *fields[j], areas[i].prior, obs);
-      if (!(searches[i].wide && opt_.search == TsbiOptions::WideSearch::kBnb))
-        add_wide_starts(&searches[i], *fields[j], nullptr, obs);
+      if (!needs_stack(i)) add_wide_starts(&searches[i], *fields[j], nullptr, obs);
     });
     for (size_t i = first; i < end; ++i)
-      if (searches[i].wide && opt_.search == TsbiOptions::WideSearch::kBnb) {
+      if (needs_stack(i)) {
         waiting[i] = fields[i - first];
-        ++waiting_count;
+        pending.push_back(i);
       }
-    if (waiting_count >= group) search_waiting();
+    if (pending.size() >= group) search_pending();
   }
-  if (waiting_count > 0) search_waiting();
+  search_pending();
   // Nothing needed any more: the cache drops maps no hypothesis holds and
   // comes back within its budget.
   stacks_for(map, areas, std::vector<std::shared_ptr<const MatchField>>(areas.size()));
