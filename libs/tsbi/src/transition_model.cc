@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 
 #include "hmt/area/ncut.h"
 #include "hmt/tsbi/bnb_matcher.h"
@@ -434,40 +435,46 @@ std::vector<std::shared_ptr<const MatchField>> TransitionModel::fields_for(
   return out;
 }
 
-std::vector<std::shared_ptr<const CostStack>> TransitionModel::stacks_for(
-    const topology::HmtMap& map, const std::vector<Outcome>& areas,
-    const std::vector<std::shared_ptr<const MatchField>>& fields) {
-  ++events_;
-  // Stacks of maps whose fields went (no hypothesis holds the map) go too.
+std::shared_ptr<const CostStack> TransitionModel::stack_for(
+    const grid::OccupancyGrid* map, const std::shared_ptr<const MatchField>& field) {
+  {
+    std::lock_guard<std::mutex> lock(stacks_mutex_);
+    const auto it = stacks_.find(map);
+    if (it != stacks_.end() && it->second.field == field) {
+      it->second.used = ++stack_calls_;
+      return it->second.stack;
+    }
+    // Back within the budget before building: the stack this thread last
+    // searched with may still be cached beyond it.
+    trim_stacks();
+  }
+  // Built outside the lock: the other threads go on searching meanwhile.
+  auto stack = make_stack(*field);
+  std::lock_guard<std::mutex> lock(stacks_mutex_);
+  stacks_[map] = {field, stack, ++stack_calls_};
+  trim_stacks();
+  return stack;
+}
+
+void TransitionModel::trim_stacks() {
+  // Stacks of maps whose fields went (no hypothesis holds the map, or the
+  // field was rebuilt) go first; then, over the budget, the least recently
+  // used, but never one a search holds now (it would only be rebuilt).
   for (auto it = stacks_.begin(); it != stacks_.end();) {
     const auto f = fields_.find(it->first);
     it = f != fields_.end() && f->second.field == it->second.field ? std::next(it)
                                                                     : stacks_.erase(it);
   }
-  std::vector<size_t> missing;  // indices into `areas`, one per map
-  for (size_t i = 0; i < areas.size(); ++i) {
-    if (!fields[i]) continue;
-    const auto& m = map.area(areas[i].area).map;
-    const auto it = stacks_.find(m.get());
-    if (it != stacks_.end())
-      it->second.used = events_;
-    else if (std::none_of(missing.begin(), missing.end(), [&](size_t k) {
-               return map.area(areas[k].area).map == m;
-             }))
-      missing.push_back(i);
+  const size_t budget = static_cast<size_t>(opt_.bnb_cache_mb) << 20;
+  while (cached_stack_bytes() > budget) {
+    auto victim = stacks_.end();
+    for (auto it = stacks_.begin(); it != stacks_.end(); ++it)
+      if (it->second.stack.use_count() == 1 &&
+          (victim == stacks_.end() || it->second.used < victim->second.used))
+        victim = it;
+    if (victim == stacks_.end()) break;
+    stacks_.erase(victim);
   }
-  std::vector<std::shared_ptr<const CostStack>> built(missing.size());
-  for_each_index(missing.size(), [&](size_t k) { built[k] = make_stack(*fields[missing[k]]); });
-  for (size_t k = 0; k < missing.size(); ++k)
-    stacks_[map.area(areas[missing[k]].area).map.get()] = {fields[missing[k]], built[k], events_};
-  std::vector<std::shared_ptr<const CostStack>> out(areas.size());
-  for (size_t i = 0; i < areas.size(); ++i)
-    if (fields[i]) out[i] = stacks_.at(map.area(areas[i].area).map.get()).stack;
-  // Over the budget: the least recently used go, but not those this event
-  // uses (`out` holds them).
-  evict_least_recent(stacks_, static_cast<size_t>(opt_.bnb_cache_mb) << 20, events_,
-                     [&] { return cached_stack_bytes(); });
-  return out;
 }
 
 size_t TransitionModel::cached_field_bytes() const {
@@ -493,37 +500,20 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
   // are summed in start order: the order of the threads cannot matter.
   //
   // The searches are set up a group of areas at a time: an area's match
-  // field (for the bound and the wide search) and cost stack (the wide
-  // search's) live only while its search is set up, unless the caches keep
-  // them. So an event with many candidates holds at most the caches'
-  // budgets, a group's fields, the fields of a few areas (fewer than one
-  // per thread) waiting for their wide search, and a stack per thread, not
-  // every candidate's: outdoors, areas of 100 m and more have fields of
-  // 5-10 MB and stacks of 30-50 MB (on the simulated campus the peak went
-  // from 372 to 269 MB), while indoors a group is usually the whole event.
+  // field (for the bound and the wide search) lives only while its group
+  // is set up, and its cost stack (the wide search's) only while its
+  // search runs, unless the caches keep them. So an event with many
+  // candidates holds at most the caches' budgets, a group's fields and a
+  // stack per thread, not every candidate's: outdoors, areas of 100 m and
+  // more have fields of 5-10 MB and stacks of 30-50 MB (on the simulated
+  // campus the peak went from 372 to 269 MB), while indoors a group is
+  // usually the whole event. Each area is one task, its set-up and wide
+  // search together, taken by whichever thread is free: the searches'
+  // costs differ a hundredfold (a look-alike corridor under a wide prior
+  // against a room), and searching them two by two in step left a thread
+  // idle for much of the Infinite Corridor's late events.
   std::vector<Search> searches(areas.size());
   const size_t group = pool_ ? static_cast<size_t>(std::max(pool_->threads(), 1)) : 1;
-  const auto needs_stack = [&](size_t i) {
-    return searches[i].wide && opt_.search == TsbiOptions::WideSearch::kBnb;
-  };
-  // Areas whose wide search waits for its cost stack (in order), with their
-  // fields by area; searched `group` at a time (a stack per thread).
-  std::vector<size_t> pending;
-  std::vector<std::shared_ptr<const MatchField>> waiting(areas.size());
-  auto search_pending = [&] {
-    for (size_t from = 0; from < pending.size(); from += group) {
-      const size_t to = std::min(from + group, pending.size());
-      std::vector<std::shared_ptr<const MatchField>> now(areas.size());
-      for (size_t k = from; k < to; ++k) now[pending[k]] = waiting[pending[k]];
-      const auto stacks = stacks_for(map, areas, now);
-      for_each_index(to - from, [&](size_t j) {
-        const size_t i = pending[from + j];
-        add_wide_starts(&searches[i], *waiting[i], stacks[i].get(), obs);
-      });
-      for (size_t k = from; k < to; ++k) waiting[pending[k]] = nullptr;
-    }
-    pending.clear();
-  };
   // A group: areas in order until their fields would pass the field
   // cache's budget, and at least one area per thread.
   const size_t budget = static_cast<size_t>(opt_.field_cache_mb) << 20;
@@ -538,20 +528,21 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
     const auto fields = fields_for(map, some);
     for_each_index(end - first, [&](size_t j) {
       const size_t i = first + j;
-      searches[i] = prepare_search(*map.area(areas[i].area).map, *fields[j], areas[i].prior, obs);
-      if (!needs_stack(i)) add_wide_starts(&searches[i], *fields[j], nullptr, obs);
+      const auto& area_map = map.area(areas[i].area).map;
+      Search& search = searches[i];
+      search = prepare_search(*area_map, *fields[j], areas[i].prior, obs);
+      std::shared_ptr<const CostStack> stack;
+      if (search.wide && opt_.search == TsbiOptions::WideSearch::kBnb)
+        stack = stack_for(area_map.get(), fields[j]);
+      add_wide_starts(&search, *fields[j], stack.get(), obs);
     });
-    for (size_t i = first; i < end; ++i)
-      if (needs_stack(i)) {
-        waiting[i] = fields[i - first];
-        pending.push_back(i);
-      }
-    if (pending.size() >= group) search_pending();
   }
-  search_pending();
   // Nothing needed any more: the cache drops maps no hypothesis holds and
   // comes back within its budget.
-  stacks_for(map, areas, std::vector<std::shared_ptr<const MatchField>>(areas.size()));
+  {
+    std::lock_guard<std::mutex> lock(stacks_mutex_);
+    trim_stacks();
+  }
   std::vector<std::pair<size_t, size_t>> jobs;  // (area, start)
   std::vector<std::vector<Match>> matches(areas.size());
   for (size_t i = 0; i < areas.size(); ++i) {
@@ -567,6 +558,11 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
     const topology::Area& area = map.area(areas[i].area);
     const ExpectedLikelihood f = sum_modes(searches[i], matches[i], obs);
     if (!f.candidate) return;
+    // Less probable than min_probability against the unexplored area
+    // alone, it could never get a hypothesis: not an outcome, and not
+    // worth the area check (a third of the Infinite Corridor's late
+    // events went to checking such look-alikes).
+    if (f.log_f < opt_.log_eta + std::log(opt_.min_probability)) return;
     if (opt_.area_check && !same_area(area, f.robot.mean, obs)) return;
     Outcome& o = areas[i];
     o.log_f = f.log_f;

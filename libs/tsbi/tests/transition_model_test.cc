@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 
+#include <cmath>
 #include <memory>
 
 #include "test_maps.h"
@@ -118,6 +119,26 @@ TEST(TransitionModel, EtaTradesNewAgainstKnown) {
   ASSERT_FALSE(out.empty());
   EXPECT_TRUE(out[0].is_new());
   EXPECT_NEAR(out[0].probability, std::exp(1.0) / (1.0 + std::exp(1.0)), 0.01);
+}
+
+// A known area whose F is below min_probability x eta would be less
+// probable than min_probability against the unexplored area alone: it
+// could never get a hypothesis, so it is no outcome (and is not checked).
+TEST(TransitionModel, AnAreaBelowMinProbabilityAgainstEtaAloneIsNoOutcome) {
+  TwoKnownAreas s;
+  const Pose2D truth(3, 3, 0.2);
+  const auto obs = observe(testing_sim::office_world(), {truth});
+  const PoseGaussian robot(truth - s.origin3, diag(0.1, 0.05));
+  auto f_of_area_1 = [](const std::vector<Outcome>& out) {
+    for (const Outcome& o : out)
+      if (o.area == 1) return o.log_f;
+    return -HUGE_VAL;
+  };
+  const double log_f1 = f_of_area_1(model(10.0).evaluate(s.map, 3, robot, obs));
+  ASSERT_GT(log_f1, -HUGE_VAL) << "area 1 must be a candidate";
+  const double edge = log_f1 - std::log(TsbiOptions{}.min_probability);  // log eta at the edge
+  EXPECT_EQ(f_of_area_1(model(edge - 0.1).evaluate(s.map, 3, robot, obs)), log_f1);
+  EXPECT_EQ(f_of_area_1(model(edge + 0.1).evaluate(s.map, 3, robot, obs)), -HUGE_VAL);
 }
 
 TEST(TransitionModel, BroaderPriorLowersTheExpectedLikelihood) {

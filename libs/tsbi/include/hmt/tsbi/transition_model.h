@@ -66,6 +66,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "hmt/area/area_options.h"
@@ -146,11 +147,14 @@ class TransitionModel {
   // parallel) and cached. Fields of maps no hypothesis holds are dropped.
   std::vector<std::shared_ptr<const MatchField>> fields_for(
       const topology::HmtMap& map, const std::vector<Outcome>& areas);
-  // The cost stack of each area given its match field in `fields` (null
-  // for the others): from the cache, or built (in parallel) and cached.
-  std::vector<std::shared_ptr<const CostStack>> stacks_for(
-      const topology::HmtMap& map, const std::vector<Outcome>& areas,
-      const std::vector<std::shared_ptr<const MatchField>>& fields);
+  // The cost stack of `map`'s match field `field`: from the cache, or built
+  // and cached. Thread-safe: each searching thread asks for its own area's.
+  std::shared_ptr<const CostStack> stack_for(const grid::OccupancyGrid* map,
+                                             const std::shared_ptr<const MatchField>& field);
+  // Drops the cached stacks of maps whose fields went, then the least
+  // recently used beyond the budget (never one a search holds). Under
+  // stacks_mutex_.
+  void trim_stacks();
   std::shared_ptr<const CostStack> make_stack(const MatchField& field) const;
   // F(gamma) in three steps, so that evaluate() can run the matcher
   // starts of every candidate area in one parallel loop (an event often
@@ -223,10 +227,11 @@ class TransitionModel {
   struct CachedStack {
     std::shared_ptr<const MatchField> field;
     std::shared_ptr<const CostStack> stack;
-    uint64_t used = 0;
+    uint64_t used = 0;  // the stack_for() call that last used it
   };
   std::map<const grid::OccupancyGrid*, CachedStack> stacks_;
-  uint64_t events_ = 0;
+  uint64_t stack_calls_ = 0;  // stack_for() calls, the stacks' `used` clock
+  mutable std::mutex stacks_mutex_;
 };
 
 // The evidence of an event, log(sum over the outcomes of F(gamma) / eta):

@@ -86,7 +86,7 @@ struct TsbiOptions {
   // this many boxes of poses. 0: never skip an area.
   int bound_boxes = 5000;
   // Outcomes less probable than this are dropped (and the rest
-  // renormalised).
+  // renormalised); a known area with F below this times eta is no outcome.
   double min_probability = 1e-3;
 
   void load(Config& cfg, const std::string& section = "tsbi");
