@@ -272,6 +272,16 @@ TEST(TransitionModel, SameOutcomesWhateverTheStackBudget) {
   EXPECT_GE(unbudgeted.cached_stacks(), 1u);  // the prior is wide: the search ran
   expect_same_outcomes(a, budgetless.evaluate(r.s.map, 3, r.robot, r.obs));
   expect_same_outcomes(a, budgetless.evaluate(r.s.map, 3, r.robot, r.obs));
+  // Threads build, share and evict the stacks as they search (the cache
+  // is locked): the same outcomes, with or without a budget.
+  for (int mb : {0, TsbiOptions{}.bnb_cache_mb}) {
+    TsbiOptions o = none;
+    o.bnb_cache_mb = mb;
+    TransitionModel pooled(o, metric_slam::MatcherOptions{}, 30.0, area::AreaOptions{},
+                           std::make_shared<metric_slam::WorkerPool>(3));
+    expect_same_outcomes(a, pooled.evaluate(r.s.map, 3, r.robot, r.obs));
+    expect_same_outcomes(a, pooled.evaluate(r.s.map, 3, r.robot, r.obs));
+  }
   // An event whose prior is narrow uses no stack: the budgetless model
   // drops the ones it held.
   budgetless.evaluate(r.s.map, 3, PoseGaussian(r.robot.mean, diag(0.05, 0.01)), r.obs);
