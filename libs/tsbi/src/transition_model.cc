@@ -388,14 +388,14 @@ namespace {
 
 // Drops the least recently used entries of `cache` (the oldest `used` first,
 // then in map address order -- which only decides what is rebuilt later,
-// never a result) until `bytes()` is within `budget`; never one used at
-// `now`.
-template <class Cache, class Bytes>
-void evict_least_recent(Cache& cache, size_t budget, uint64_t now, Bytes&& bytes) {
+// never a result) until `bytes()` is within `budget`; never one `in_use`.
+template <class Cache, class Bytes, class InUse>
+void evict_least_recent(Cache& cache, size_t budget, Bytes&& bytes, InUse&& in_use) {
   while (bytes() > budget) {
     auto victim = cache.end();
     for (auto it = cache.begin(); it != cache.end(); ++it)
-      if (it->second.used != now && (victim == cache.end() || it->second.used < victim->second.used))
+      if (!in_use(it->second) &&
+          (victim == cache.end() || it->second.used < victim->second.used))
         victim = it;
     if (victim == cache.end()) break;
     cache.erase(victim);
@@ -430,8 +430,9 @@ std::vector<std::shared_ptr<const MatchField>> TransitionModel::fields_for(
   // Over the budget: the least recently used go, never one this call uses.
   // A field is a function of its map alone, so what is evicted and rebuilt
   // never changes a result.
-  evict_least_recent(fields_, static_cast<size_t>(opt_.field_cache_mb) << 20, field_calls_,
-                     [&] { return cached_field_bytes(); });
+  evict_least_recent(fields_, static_cast<size_t>(opt_.field_cache_mb) << 20,
+                     [&] { return cached_field_bytes(); },
+                     [&](const CachedField& f) { return f.used == field_calls_; });
   return out;
 }
 
@@ -465,16 +466,9 @@ void TransitionModel::trim_stacks() {
     it = f != fields_.end() && f->second.field == it->second.field ? std::next(it)
                                                                     : stacks_.erase(it);
   }
-  const size_t budget = static_cast<size_t>(opt_.bnb_cache_mb) << 20;
-  while (cached_stack_bytes() > budget) {
-    auto victim = stacks_.end();
-    for (auto it = stacks_.begin(); it != stacks_.end(); ++it)
-      if (it->second.stack.use_count() == 1 &&
-          (victim == stacks_.end() || it->second.used < victim->second.used))
-        victim = it;
-    if (victim == stacks_.end()) break;
-    stacks_.erase(victim);
-  }
+  evict_least_recent(stacks_, static_cast<size_t>(opt_.bnb_cache_mb) << 20,
+                     [&] { return cached_stack_bytes(); },
+                     [](const CachedStack& s) { return s.stack.use_count() > 1; });
 }
 
 size_t TransitionModel::cached_field_bytes() const {
