@@ -36,6 +36,26 @@ PointGrid::PointGrid(const std::vector<Point2D>& points, double cell)
     while (table_[h] != 0) h = (h + 1) & mask_;
     table_[h] = static_cast<uint32_t>(c + 1);
   }
+  set_bounds();
+}
+
+void PointGrid::set_bounds() {
+  lo_x_ = lo_y_ = 0;
+  hi_x_ = hi_y_ = -1;
+  for (size_t c = 0; c < cells_.size(); ++c) {
+    // key(): x in the high 32 bits, y in the low, each a 32-bit cell index.
+    const int64_t ix = static_cast<int32_t>(static_cast<uint32_t>(cells_[c].key >> 32));
+    const int64_t iy = static_cast<int32_t>(static_cast<uint32_t>(cells_[c].key));
+    if (c == 0) {
+      lo_x_ = hi_x_ = ix;
+      lo_y_ = hi_y_ = iy;
+      continue;
+    }
+    lo_x_ = std::min(lo_x_, ix);
+    hi_x_ = std::max(hi_x_, ix);
+    lo_y_ = std::min(lo_y_, iy);
+    hi_y_ = std::max(hi_y_, iy);
+  }
 }
 
 }  // namespace hmt::area

@@ -139,6 +139,8 @@ struct Access {
     pod_vector(ar, g.cells_);
     pod_vector(ar, g.table_);
     ar(g.mask_);
+    // The bounds follow from the cells: derived, not stored.
+    if constexpr (kLoading<A>) g.set_bounds();
   }
 
   template <class A>

@@ -11,6 +11,7 @@
 // table is open-addressed (linear probing) on a 64-bit key.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -45,19 +46,47 @@ class PointGrid {
     });
   }
 
-  // Calls pred(point, original_index) for stored points in the cells covering
-  // the square [p - r, p + r] until one returns true; returns whether one did.
+  // Calls pred(point, original_index) for stored points in the cells that
+  // meet the disc of radius r around p until one returns true; returns
+  // whether one did. The cells are visited ring by ring outward from p's
+  // cell: the SSO's gate radius reaches many cells for a far point (its
+  // covariance grows with range), and the point that answers "yes" is
+  // usually in or next to p's cell, so a hit ends the search after a few
+  // lookups instead of after the square's far corners. Cells wholly farther
+  // than r from p, and cells outside the occupied ones' bounds, are never
+  // looked up. Whether some point answers does not depend on the order.
   template <class Pred>
   bool any_near(const Point2D& p, double r, Pred&& pred) const {
     if (pts_.empty()) return false;
-    const int64_t x0 = cell_of(p.x - r), x1 = cell_of(p.x + r);
-    const int64_t y0 = cell_of(p.y - r), y1 = cell_of(p.y + r);
-    for (int64_t ix = x0; ix <= x1; ++ix) {
-      for (int64_t iy = y0; iy <= y1; ++iy) {
-        const Cell* c = find(key(ix, iy));
-        if (!c) continue;
-        for (uint32_t k = c->begin; k < c->end; ++k)
-          if (pred(pts_[k], idx_[k])) return true;
+    const int64_t x0 = std::max(cell_of(p.x - r), lo_x_), x1 = std::min(cell_of(p.x + r), hi_x_);
+    const int64_t y0 = std::max(cell_of(p.y - r), lo_y_), y1 = std::min(cell_of(p.y + r), hi_y_);
+    if (x0 > x1 || y0 > y1) return false;
+    const int64_t cx = cell_of(p.x), cy = cell_of(p.y);
+    const int64_t rings = std::max(std::max(cx - x0, x1 - cx), std::max(cy - y0, y1 - cy));
+    const double r2 = r * r;
+    const auto visit = [&](int64_t ix, int64_t iy) {
+      // Distance from p to the cell's nearest point, per axis.
+      const double dx = std::max({0.0, static_cast<double>(ix) * cell_ - p.x,
+                                  p.x - static_cast<double>(ix + 1) * cell_});
+      const double dy = std::max({0.0, static_cast<double>(iy) * cell_ - p.y,
+                                  p.y - static_cast<double>(iy + 1) * cell_});
+      if (dx * dx + dy * dy > r2) return false;
+      const Cell* c = find(key(ix, iy));
+      if (!c) return false;
+      for (uint32_t k = c->begin; k < c->end; ++k)
+        if (pred(pts_[k], idx_[k])) return true;
+      return false;
+    };
+    for (int64_t ring = 0; ring <= rings; ++ring) {
+      const int64_t ya = std::max(y0, cy - ring), yb = std::min(y1, cy + ring);
+      for (int64_t ix = std::max(x0, cx - ring); ix <= std::min(x1, cx + ring); ++ix) {
+        if (ix == cx - ring || ix == cx + ring) {  // a whole column of the ring
+          for (int64_t iy = ya; iy <= yb; ++iy)
+            if (visit(ix, iy)) return true;
+        } else {  // only the ring's top and bottom cells
+          if (cy - ring >= y0 && visit(ix, cy - ring)) return true;
+          if (ring > 0 && cy + ring <= y1 && visit(ix, cy + ring)) return true;
+        }
       }
     }
     return false;
@@ -102,6 +131,9 @@ class PointGrid {
   std::vector<Cell> cells_;
   std::vector<uint32_t> table_;  // 0 = empty, else index into cells_ + 1
   size_t mask_ = 0;
+  // Bounds of the occupied cells (derived from cells_: set_bounds()).
+  int64_t lo_x_ = 0, hi_x_ = -1, lo_y_ = 0, hi_y_ = -1;
+  void set_bounds();
 };
 
 }  // namespace hmt::area
