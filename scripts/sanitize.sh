@@ -30,7 +30,7 @@ esac
 REQUIRED_TESTS=(
   'e2e\.AppRun\.MalagaOneLoopMatchesIndependentReference'  # whole Malaga log, loop closed into area 1
   'e2e\.AppRun\.SameSeedSameBytesWhateverTheThreads'      # 1 vs 2 particle threads, same bytes
-  'hmt_metric_slam\.WorkerPool\..*'                       # the particle worker pool
+  'hmt_common\.WorkerPool\..*'                            # the worker pool (particles, SSO pairs)
   'hmt_tsbi\.TransitionModel\.SameOutcomesWhatever.*'      # TSBI's searches sharing the cost stacks' cache
 )
 OPTIONAL_TESTS=(
@@ -47,7 +47,7 @@ ADDRESS_EXCLUDE=(
 # Targets to build: the app, every end-to-end test binary, and the unit test
 # binaries named below when they exist (matched against the build tree's
 # target list, so new e2e binaries are picked up by name).
-REQUIRED_TARGETS=(hmt-slam hmt_e2e_tests hmt_metric_slam_tests hmt_tsbi_tests)
+REQUIRED_TARGETS=(hmt-slam hmt_e2e_tests hmt_common_tests hmt_tsbi_tests)
 TARGET_PATTERN='^(hmt_e2e.*_tests|hmt_framework_tests|hmt_checkpoint_tests)$'
 
 SUPP_DIR=$ROOT/scripts/sanitizers

@@ -172,13 +172,17 @@ TEST(AppRun, MetricBaselineMatchesIndependentReference) {
 TEST(AppRun, SameSeedSameBytesWhateverTheThreads) {
   const std::string dir = temp_dir("determinism");
   const std::string base = "run --config config/default.ini --quiet --set input.max_steps=80 ";
-  const AppResult a = run_app(base + "--set metric_slam.threads=1 --out '" + dir + "/a'", dir);
-  const AppResult b = run_app(base + "--set metric_slam.threads=2 --out '" + dir + "/b'", dir);
+  // Both pools: the particles' and the partitioner's SSO pairs.
+  const AppResult a = run_app(
+      base + "--set metric_slam.threads=1 --set area.threads=1 --out '" + dir + "/a'", dir);
+  const AppResult b = run_app(
+      base + "--set metric_slam.threads=2 --set area.threads=3 --out '" + dir + "/b'", dir);
   ASSERT_EQ(a.exit_code, 0) << a.err;
   ASSERT_EQ(b.exit_code, 0) << b.err;
   // The same run again: the concurrent pipeline's thread timing differs,
   // the outputs do not.
-  const AppResult a2 = run_app(base + "--set metric_slam.threads=1 --out '" + dir + "/a2'", dir);
+  const AppResult a2 = run_app(
+      base + "--set metric_slam.threads=1 --set area.threads=1 --out '" + dir + "/a2'", dir);
   ASSERT_EQ(a2.exit_code, 0) << a2.err;
   for (const char* f : {"trajectory.tum", "map.png", "map.pgm", "map.yaml", "hmt_map.bin",
                         "topology.json", "tsbi_events.csv", "topological_pmf.csv", "ess.csv"}) {

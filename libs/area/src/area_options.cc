@@ -49,6 +49,7 @@ void AreaOptions::load(Config& cfg, const std::string& s) {
   min_sso = cfg.get_double(s, "min_sso", min_sso);
   window_size = cfg.get_int(s, "window_size", window_size);
   index_cell_size = cfg.get_double(s, "index_cell_size", index_cell_size);
+  threads = cfg.get_int(s, "threads", threads);
   PlacementOptions& p = placement;
   p.policy = parse_placement(cfg.get_string(s, "placement", to_string(p.policy)), s, "placement");
   p.e_min = cfg.get_double(s, "placement_e_min", p.e_min);
@@ -78,6 +79,7 @@ void AreaOptions::validate(const std::string& s) const {
   require(min_sso >= 0.0 && min_sso < 1.0, s, "min_sso", "in [0, 1)");
   require(window_size >= 2, s, "window_size", ">= 2");
   require(index_cell_size > 0.0, s, "index_cell_size", "> 0 (metres)");
+  require(threads >= 0 && threads <= 1024, s, "threads", "in [0, 1024] (0 = one per core)");
   const PlacementOptions& p = placement;
   require(p.e_min > 0.0, s, "placement_e_min", "> 0 (metres)");
   require(p.threshold > 0.0, s, "placement_threshold", "> 0");

@@ -8,7 +8,8 @@
 namespace hmt::area {
 
 OnlinePartitioner::OnlinePartitioner(const AreaOptions& options)
-    : options_(options), graph_(options) {}
+    : options_(options),
+      graph_(options, std::make_shared<WorkerPool>(WorkerPool::threads_for(options.threads))) {}
 
 int OnlinePartitioner::add_keyframe(const Keyframe& keyframe) {
   const int id = next_id_++;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace hmt::area {
 namespace {
@@ -15,8 +16,8 @@ constexpr double kReachSafety = 1.5;
 
 }  // namespace
 
-SsoGraph::SsoGraph(const AreaOptions& options)
-    : options_(options), point_cell_(2.0 * options.sso.delta) {
+SsoGraph::SsoGraph(const AreaOptions& options, std::shared_ptr<WorkerPool> pool)
+    : options_(options), pool_(std::move(pool)), point_cell_(2.0 * options.sso.delta) {
   options_.validate();
 }
 
@@ -202,14 +203,25 @@ void SsoGraph::compute_edges_probabilistic(uint32_t slot) {
   }
   // Ascending slot order: the same pairs in the same order whatever the hash.
   std::sort(touched_.begin(), touched_.end());
-  last_candidates_ = 0;
-  for (const uint32_t s : touched_) {
-    last_point_[s] = -1;
-    const Node& b = nodes_[s];
-    if (!a.box.intersects(b.box)) continue;
-    ++last_candidates_;
-    add_edge(slot, s, scan_sso(a.scan, a.pose, b.scan, b.pose, options_.sso));
+  for (const uint32_t s : touched_) last_point_[s] = -1;
+  touched_.erase(std::remove_if(touched_.begin(), touched_.end(),
+                                [&](uint32_t s) { return !a.box.intersects(nodes_[s].box); }),
+                 touched_.end());
+  last_candidates_ = touched_.size();
+  // The pairs are independent scan matches, the bulk of the partitioner's
+  // time where the scans reach far (each point's gate grows with range):
+  // evaluated on the pool, each into its own slot, and joined in slot order.
+  pair_sso_.assign(touched_.size(), 0.0);
+  const auto evaluate = [&](size_t k) {
+    const Node& b = nodes_[touched_[k]];
+    pair_sso_[k] = scan_sso(a.scan, a.pose, b.scan, b.pose, options_.sso);
+  };
+  if (pool_ && touched_.size() > 1) {
+    pool_->parallel_for(touched_.size(), evaluate);
+  } else {
+    for (size_t k = 0; k < touched_.size(); ++k) evaluate(k);
   }
+  for (size_t k = 0; k < touched_.size(); ++k) add_edge(slot, touched_[k], pair_sso_[k]);
 }
 
 void SsoGraph::index_points(uint32_t slot) {

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 #include <numeric>
+#include <utility>
 
 #include "hmt/area/offline_grouping.h"
 #include "sim_world.h"
@@ -19,9 +21,9 @@ std::vector<Keyframe> every_kth(const std::vector<Keyframe>& all, size_t k) {
 
 // Every stored weight equals the pairwise SSO, and every pair with SSO >=
 // min_sso is stored: the spatial indexes lose nothing.
-void expect_graph_matches_pairwise(const std::vector<Keyframe>& kfs,
-                                   const AreaOptions& o) {
-  SsoGraph g(o);
+void expect_graph_matches_pairwise(const std::vector<Keyframe>& kfs, const AreaOptions& o,
+                                   std::shared_ptr<WorkerPool> pool = nullptr) {
+  SsoGraph g(o, std::move(pool));
   for (size_t i = 0; i < kfs.size(); ++i) g.add(static_cast<int>(i), kfs[i]);
   std::vector<PreparedScan> scans;
   for (const auto& k : kfs) scans.emplace_back(k.scan, o.sso);
@@ -62,6 +64,8 @@ TEST(area_SsoGraph, ProbabilisticWeightsEqualPairwiseSso) {
         kfs[i].pose.mean + Pose2D(0.05 * ((i % 3) - 1.0), 0.04, 0.0);
   }
   expect_graph_matches_pairwise(kfs, o);
+  // The pairs evaluated on a pool (3 threads) join into the same graph.
+  expect_graph_matches_pairwise(kfs, o, std::make_shared<WorkerPool>(3));
 }
 
 TEST(area_SsoGraph, RemovingKeyframesRemovesTheirEdges) {

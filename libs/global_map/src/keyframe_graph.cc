@@ -14,7 +14,7 @@
 #include <string>
 
 #include "hmt/metric_slam/scan_points.h"
-#include "hmt/metric_slam/worker_pool.h"
+#include "hmt/common/worker_pool.h"
 #include "relative_pose_factor.h"
 
 namespace hmt::global_map {
@@ -245,7 +245,7 @@ class Graph {
         const metric_slam::MatcherOptions& matcher_opt, int threads,
         const std::vector<OutlierArc>& excluded)
       : map_(map), visits_(visits), steps_(steps), opt_(opt), matcher_(matcher_opt),
-        table_(visits, steps), pool_(metric_slam::WorkerPool::threads_for(threads)) {
+        table_(visits, steps), pool_(WorkerPool::threads_for(threads)) {
     for (const OutlierArc& o : excluded)
       excluded_.insert({std::min(o.from, o.to), std::max(o.from, o.to)});
     if (!map.has_area(initial.root) || !initial.poses.count(initial.root))
@@ -521,7 +521,7 @@ class Graph {
   const KeyframeGraphOptions& opt_;
   metric_slam::ScanMatcher matcher_;
   PathTable table_;
-  metric_slam::WorkerPool pool_;
+  WorkerPool pool_;
   AreaId root_ = topology::kNoArea;
   std::vector<KeyframeNode> nodes_;
   std::vector<AreaId> area_ids_;  // ascending; variable a is area_ids_[a]

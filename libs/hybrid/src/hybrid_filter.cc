@@ -38,10 +38,10 @@ std::vector<Pose2D> current_poses(const metric_slam::GridRbpf& f) {
 
 HybridFilter::HybridFilter(const HmtOptions& options)
     : opt_(options),
-      pool_(std::make_shared<metric_slam::WorkerPool>(
-          metric_slam::WorkerPool::threads_for(options.rbpf.threads))),
-      topology_pool_(std::make_shared<metric_slam::WorkerPool>(
-          metric_slam::WorkerPool::threads_for(options.rbpf.threads))),
+      pool_(std::make_shared<WorkerPool>(
+          WorkerPool::threads_for(options.rbpf.threads))),
+      topology_pool_(std::make_shared<WorkerPool>(
+          WorkerPool::threads_for(options.rbpf.threads))),
       aam_(options.area),
       tsbi_(options.tsbi, options.rbpf.matcher, options.rbpf.likelihood_gain, options.area,
             topology_pool_) {}

@@ -51,7 +51,7 @@ size_t field_bytes_bound(const grid::OccupancyGrid& map) {
 TransitionModel::TransitionModel(const TsbiOptions& options,
                                  const metric_slam::MatcherOptions& matcher,
                                  double likelihood_gain, const area::AreaOptions& area,
-                                 std::shared_ptr<metric_slam::WorkerPool> pool)
+                                 std::shared_ptr<WorkerPool> pool)
     : opt_(options),
       matcher_(matcher),
       gain_(likelihood_gain),

@@ -39,7 +39,7 @@ struct TwoKnownAreas {
 };
 
 TransitionModel model(double log_eta = 10.0, int bound_boxes = TsbiOptions{}.bound_boxes,
-                      std::shared_ptr<metric_slam::WorkerPool> pool = nullptr) {
+                      std::shared_ptr<WorkerPool> pool = nullptr) {
   TsbiOptions o;
   o.log_eta = log_eta;
   o.bound_boxes = bound_boxes;
@@ -200,7 +200,7 @@ TEST(TransitionModel, SameOutcomesWhateverTheThreads) {
   ReturnToAreaOne r;
   const auto alone = model().evaluate(r.s.map, 3, r.robot, r.obs);
   const auto pooled = model(10.0, TsbiOptions{}.bound_boxes,
-                            std::make_shared<metric_slam::WorkerPool>(3))
+                            std::make_shared<WorkerPool>(3))
                           .evaluate(r.s.map, 3, r.robot, r.obs);
   ASSERT_GE(alone.size(), 2u);
   expect_same_outcomes(alone, pooled);
@@ -278,7 +278,7 @@ TEST(TransitionModel, SameOutcomesWhateverTheStackBudget) {
     TsbiOptions o = none;
     o.bnb_cache_mb = mb;
     TransitionModel pooled(o, metric_slam::MatcherOptions{}, 30.0, area::AreaOptions{},
-                           std::make_shared<metric_slam::WorkerPool>(3));
+                           std::make_shared<WorkerPool>(3));
     expect_same_outcomes(a, pooled.evaluate(r.s.map, 3, r.robot, r.obs));
     expect_same_outcomes(a, pooled.evaluate(r.s.map, 3, r.robot, r.obs));
   }

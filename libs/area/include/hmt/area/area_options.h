@@ -77,6 +77,10 @@ struct AreaOptions {
   // to find the keyframes whose sensed regions can overlap (probabilistic
   // SSO; the fixed-delta SSO uses a finer point index, see sso_graph.h).
   double index_cell_size = 4.0;
+  // Worker threads for a new keyframe's probabilistic SSO pairs (0 = one per
+  // core). The pairs are independent and joined in order: results do not
+  // depend on it.
+  int threads = 0;
   // Which rule starts a new area (placement.h): keys placement,
   // placement_e_min, placement_threshold, placement_decay, placement_cutoff,
   // placement_rate, placement_normal_radius, placement_reference_window,
@@ -85,7 +89,8 @@ struct AreaOptions {
 
   // Reads every option from `section` (keys: delta, use_probabilistic, beta,
   // range_std, bearing_std, gate, descriptor_threshold, tau,
-  // min_cluster_size, split_method, min_sso, window_size, index_cell_size),
+  // min_cluster_size, split_method, min_sso, window_size, index_cell_size,
+  // threads),
   // keeping the current values as defaults, then validates.
   void load(Config& cfg, const std::string& section = "area");
   // Throws ConfigError for the first out-of-range value.

@@ -31,6 +31,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -39,6 +40,7 @@
 #include "hmt/area/keyframe.h"
 #include "hmt/area/ncut.h"
 #include "hmt/area/scan_sso.h"
+#include "hmt/common/worker_pool.h"
 
 namespace hmt::checkpoint {
 struct Access;  // hmt/checkpoint/checkpoint.h
@@ -51,7 +53,10 @@ class SsoGraph {
   friend struct hmt::checkpoint::Access;
 
  public:
-  explicit SsoGraph(const AreaOptions& options);
+  // `pool`: where a new keyframe's probabilistic pairs are evaluated (one
+  // task per pair, joined in slot order, so the graph does not depend on
+  // it); null evaluates them on the calling thread.
+  explicit SsoGraph(const AreaOptions& options, std::shared_ptr<WorkerPool> pool = nullptr);
 
   // Adds the keyframe and its edges to every stored keyframe with SSO >=
   // min_sso. Throws std::invalid_argument if the id is already present.
@@ -115,6 +120,7 @@ class SsoGraph {
   const Node& node(int id) const;
 
   AreaOptions options_;
+  std::shared_ptr<WorkerPool> pool_;  // null: pairs on the calling thread
   std::vector<Node> nodes_;  // by slot
   std::vector<uint32_t> free_slots_;
   std::unordered_map<int, uint32_t> slot_of_;
@@ -133,6 +139,7 @@ class SsoGraph {
   std::vector<uint32_t> count_ba_;  // slot's points matched by new points
   std::vector<std::vector<char>> matched_b_;
   std::vector<uint32_t> touched_;
+  std::vector<double> pair_sso_;  // probabilistic: SSO per candidate pair
 };
 
 }  // namespace hmt::area

@@ -36,7 +36,7 @@
 //
 // Deterministic: hypotheses are processed in id order, each with its own
 // random streams derived from (seed, hypothesis id); particle work is
-// parallel but index-deterministic (metric_slam::WorkerPool). Not
+// parallel but index-deterministic (WorkerPool). Not
 // synchronised: one thread drives the non-const methods; evaluate() and
 // align() may run on other threads meanwhile.
 #pragma once
@@ -226,11 +226,11 @@ class HybridFilter {
   std::optional<AlignmentJob> accept_shared_closures(const std::vector<double>& p);
 
   HmtOptions opt_;
-  std::shared_ptr<metric_slam::WorkerPool> pool_;  // metric SLAM's particles
+  std::shared_ptr<WorkerPool> pool_;  // metric SLAM's particles
   // TSBI's candidates and TLCA's closures: a pool of its own, since in live
   // mode those run beside metric SLAM, which must not wait for them. TSBI
   // and TLCA take turns on it.
-  std::shared_ptr<metric_slam::WorkerPool> topology_pool_;
+  std::shared_ptr<WorkerPool> topology_pool_;
   area::OnlinePartitioner aam_;
   // Mutable: its cache of the areas' match fields is used and updated by
   // evaluate() alone (on the TSBI thread, in the framework).

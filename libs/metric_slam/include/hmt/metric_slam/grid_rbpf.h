@@ -24,7 +24,7 @@
 #include "hmt/grid/occupancy_grid.h"
 #include "hmt/metric_slam/rbpf_options.h"
 #include "hmt/metric_slam/scan_matcher.h"
-#include "hmt/metric_slam/worker_pool.h"
+#include "hmt/common/worker_pool.h"
 
 namespace hmt::checkpoint {
 struct Access;  // hmt/checkpoint/checkpoint.h

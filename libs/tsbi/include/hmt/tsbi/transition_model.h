@@ -72,7 +72,7 @@
 #include "hmt/area/area_options.h"
 #include "hmt/metric_slam/scan_matcher.h"
 #include "hmt/metric_slam/scan_points.h"
-#include "hmt/metric_slam/worker_pool.h"
+#include "hmt/common/worker_pool.h"
 #include "hmt/topology/hmt_map.h"
 #include "hmt/topology/pose_gaussian.h"
 #include "hmt/tsbi/cost_stack.h"
@@ -112,7 +112,7 @@ class TransitionModel {
   TransitionModel(const TsbiOptions& options,
                   const metric_slam::MatcherOptions& matcher,
                   double likelihood_gain, const area::AreaOptions& area,
-                  std::shared_ptr<metric_slam::WorkerPool> pool = nullptr);
+                  std::shared_ptr<WorkerPool> pool = nullptr);
 
   // The outcomes for a hypothesis whose map is `map`, whose robot is in area
   // `current` at `robot` (in that area's frame) and has just made the
@@ -210,7 +210,7 @@ class TransitionModel {
   metric_slam::ScanMatcher matcher_;
   double gain_;
   area::AreaOptions area_;
-  std::shared_ptr<metric_slam::WorkerPool> pool_;
+  std::shared_ptr<WorkerPool> pool_;
   // Match fields by map. The entry holds the map too, so that its address
   // cannot be reused by another map while the entry lives.
   struct CachedField {

@@ -1,4 +1,4 @@
-#include "hmt/metric_slam/worker_pool.h"
+#include "hmt/common/worker_pool.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <atomic>
 #include <stdexcept>
 
-namespace hmt::metric_slam {
+namespace hmt {
 namespace {
 
 TEST(WorkerPool, VisitsEveryIndexOnce) {
@@ -47,4 +47,4 @@ TEST(WorkerPool, CallersOnSeveralThreadsTakeTurns) {
 }
 
 }  // namespace
-}  // namespace hmt::metric_slam
+}  // namespace hmt

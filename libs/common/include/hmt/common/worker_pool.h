@@ -1,4 +1,5 @@
-// A fixed set of worker threads for data-parallel loops over particles.
+// A fixed set of worker threads for data-parallel loops (particles, TSBI's
+// candidate areas, the SSO of a new keyframe's pairs, keyframe matches).
 // Work is split by index; results must depend only on the index (each
 // particle carries its own random stream), so the output is identical
 // whatever the number of threads or their timing.
@@ -11,7 +12,7 @@
 #include <thread>
 #include <vector>
 
-namespace hmt::metric_slam {
+namespace hmt {
 
 class WorkerPool {
  public:
@@ -46,4 +47,4 @@ class WorkerPool {
   std::exception_ptr error_;
 };
 
-}  // namespace hmt::metric_slam
+}  // namespace hmt

@@ -1,6 +1,6 @@
-#include "hmt/metric_slam/worker_pool.h"
+#include "hmt/common/worker_pool.h"
 
-namespace hmt::metric_slam {
+namespace hmt {
 
 int WorkerPool::threads_for(int requested) {
   if (requested > 0) return requested;
@@ -77,4 +77,4 @@ void WorkerPool::parallel_for(size_t n, const std::function<void(size_t)>& fn) {
   if (error_) std::rethrow_exception(error_);
 }
 
-}  // namespace hmt::metric_slam
+}  // namespace hmt
