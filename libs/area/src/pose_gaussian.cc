@@ -29,9 +29,7 @@ Eigen::Matrix<double, 2, 3> jacobian_pose_point_wrt_pose(const Pose2D& q,
 
 Eigen::Matrix2d compose_point_cov(const PoseGaussian& q, const Point2D& p,
                                   const Eigen::Matrix2d& cov_p) {
-  const auto J = jacobian_pose_point_wrt_pose(q.mean, p);
-  const Eigen::Matrix2d R = rotation(q.mean.theta);
-  return J * q.cov * J.transpose() + R * cov_p * R.transpose();
+  return PointComposer(q).cov(p, cov_p);
 }
 
 Eigen::Matrix2d range_bearing_cov(double r, double phi, double range_std,

@@ -66,10 +66,11 @@ double scan_match_ratio(const PreparedScan& a, const PoseGaussian& pose_a,
       if (b.grid().any_within(q.mean.transform(p), options.delta)) ++matched;
   } else {
     const auto& bcov = b.point_covs();
+    const PointComposer through_q(q);
     for (size_t i = 0; i < a.size(); ++i) {
       const Point2D& s = a.points()[i];
-      const Point2D p = q.mean.transform(s);
-      Eigen::Matrix2d Cp = compose_point_cov(q, s, a.point_covs()[i]);
+      const Point2D p = through_q.transform(s);
+      Eigen::Matrix2d Cp = through_q.cov(s, a.point_covs()[i]);
       Cp.diagonal().array() += kVarianceFloor;
       // No point of B farther than this can pass the gate: d^2 >= |d|^2 /
       // lambda_max(Cp + Cb) and lambda_max(Cp + Cb) <= lambda_max(Cp) +

@@ -57,6 +57,28 @@ double brute_force_sso(const LaserScan& a, const Pose2D& pa, const LaserScan& b,
   return 0.5 * (ratio(A, B) + ratio(B, A));
 }
 
+// The SSO's loop composes its points through one PointComposer: the same
+// bits as Pose2D::transform() and compose_point_cov() with their own sines.
+TEST(area_ScanSso, PointComposerGivesTheSameBitsAsThePerPointFunctions) {
+  Random rng(3);
+  for (int k = 0; k < 200; ++k) {
+    PoseGaussian q(Pose2D(rng.uniform(-50, 50), rng.uniform(-50, 50), rng.uniform(-M_PI, M_PI)));
+    q.cov << 0.01, 0.002, 0.001, 0.002, 0.02, -0.003, 0.001, -0.003, 0.004;
+    const Point2D p{rng.uniform(-30, 30), rng.uniform(-30, 30)};
+    Eigen::Matrix2d cp;
+    cp << rng.uniform(0.001, 0.1), 0.003, 0.003, rng.uniform(0.001, 0.1);
+    const PointComposer through_q(q);
+    const Point2D a = through_q.transform(p), b = q.mean.transform(p);
+    EXPECT_EQ(a.x, b.x);
+    EXPECT_EQ(a.y, b.y);
+    const Eigen::Matrix2d ca = through_q.cov(p, cp);
+    const Eigen::Matrix<double, 2, 3> J = jacobian_pose_point_wrt_pose(q.mean, p);
+    const Eigen::Matrix2d R = rotation(q.mean.theta);
+    const Eigen::Matrix2d cb = J * q.cov * J.transpose() + R * cp * R.transpose();
+    EXPECT_TRUE((ca.array() == cb.array()).all()) << ca << "\n" << cb;
+  }
+}
+
 TEST(area_ScanSso, ScanWithItselfIsOne) {
   Random rng(1);
   SsoOptions o;
