@@ -1,11 +1,14 @@
 // A static uniform hash grid over 2D points, for "is there a point within r
 // of p?" queries.
 //
-// Why not a k-d tree (nanoflann, as bundled with MRPT): the SSO only asks a
-// fixed-radius existence question with r equal to the match tolerance delta.
-// With cells of size 2*delta a query touches at most 2x2 cells, i.e. O(1)
-// work whatever the scan size, and building is one sort — cheaper than a tree
-// build and a tree descent per query, and free of extra dependencies.
+// Why not a k-d tree (nanoflann, as bundled with MRPT): the SSO only asks
+// "is any point within r?". With the fixed tolerance r = delta and cells of
+// 2*delta a query touches at most 2x2 cells, O(1) work whatever the scan
+// size; the probabilistic test's r grows with the point's range (its gate
+// covers the sampling term r beta), and any_near() then visits the cells
+// nearest first, so a match ends the query early. Building is one sort:
+// cheaper than a tree build and a tree descent per query, and free of extra
+// dependencies.
 //
 // Points are stored sorted by cell so each cell is a contiguous run; the cell
 // table is open-addressed (linear probing) on a 64-bit key.
