@@ -19,14 +19,6 @@ PoseGaussian relative_pose(const PoseGaussian& of, const PoseGaussian& from) {
   return q;
 }
 
-Eigen::Matrix<double, 2, 3> jacobian_pose_point_wrt_pose(const Pose2D& q,
-                                                         const Point2D& p) {
-  const double c = std::cos(q.theta), s = std::sin(q.theta);
-  Eigen::Matrix<double, 2, 3> J;
-  J << 1, 0, -s * p.x - c * p.y, 0, 1, c * p.x - s * p.y;
-  return J;
-}
-
 Eigen::Matrix2d compose_point_cov(const PoseGaussian& q, const Point2D& p,
                                   const Eigen::Matrix2d& cov_p) {
   return PointComposer(q).cov(p, cov_p);

@@ -16,10 +16,6 @@ using PoseGaussian = hmt::PoseGaussian;  // hmt/common/pose_gaussian.h
 // to first order assuming the two poses are independent.
 PoseGaussian relative_pose(const PoseGaussian& of, const PoseGaussian& from);
 
-// d(q (+) p) / dq for a point p: 2x3.
-Eigen::Matrix<double, 2, 3> jacobian_pose_point_wrt_pose(const Pose2D& q,
-                                                         const Point2D& p);
-
 // Covariance of the point q (+) p for a Gaussian pose q and a point p with
 // covariance cov_p given in q's frame: J_q Sigma_q J_q^T + R cov_p R^T.
 Eigen::Matrix2d compose_point_cov(const PoseGaussian& q, const Point2D& p,
@@ -49,14 +45,19 @@ class PointComposer {
   Point2D transform(const Point2D& p) const {
     return {q_.mean.x + c_ * p.x - s_ * p.y, q_.mean.y + s_ * p.x + c_ * p.y};
   }
-  Eigen::Matrix2d cov(const Point2D& p, const Eigen::Matrix2d& cov_p) const {
+  // d(q (+) p) / dq: 2x3.
+  Eigen::Matrix<double, 2, 3> jacobian(const Point2D& p) const {
     Eigen::Matrix<double, 2, 3> J;
     J << 1, 0, -s_ * p.x - c_ * p.y, 0, 1, c_ * p.x - s_ * p.y;
+    return J;
+  }
+  Eigen::Matrix2d cov(const Point2D& p, const Eigen::Matrix2d& cov_p) const {
+    const Eigen::Matrix<double, 2, 3> J = jacobian(p);
     return J * q_.cov * J.transpose() + R_ * cov_p * R_.transpose();
   }
 
  private:
-  const PoseGaussian& q_;
+  PoseGaussian q_;  // a copy: the composer may outlive the caller's pose
   double c_, s_;
   Eigen::Matrix2d R_;
 };
