@@ -15,7 +15,7 @@ TEST(area_Options, ReadsEveryKeyAndLeavesNoneUnused) {
       "range_std = 0.02\nbearing_std = 0.001\ngate = 5.99\n"
       "descriptor_threshold = 0.4\ntau = 0.8\nmin_cluster_size = 3\n"
       "split_method = sweep\nmin_sso = 0.01\nwindow_size = 150\n"
-      "index_cell_size = 2.5\n",
+      "index_cell_size = 2.5\nthreads = 3\n",
       "area.ini");
   AreaOptions o;
   o.load(cfg);
@@ -33,6 +33,7 @@ TEST(area_Options, ReadsEveryKeyAndLeavesNoneUnused) {
   EXPECT_DOUBLE_EQ(o.min_sso, 0.01);
   EXPECT_EQ(o.window_size, 150);
   EXPECT_DOUBLE_EQ(o.index_cell_size, 2.5);
+  EXPECT_EQ(o.threads, 3);
 }
 
 TEST(area_Options, DefaultsAreRecordedInTheEffectiveConfig) {
@@ -43,7 +44,7 @@ TEST(area_Options, DefaultsAreRecordedInTheEffectiveConfig) {
   for (const char* key :
        {"delta", "use_probabilistic", "beta", "range_std", "bearing_std",
         "gate", "descriptor_threshold", "tau", "min_cluster_size",
-        "split_method", "min_sso", "window_size", "index_cell_size"})
+        "split_method", "min_sso", "window_size", "index_cell_size", "threads"})
     EXPECT_NE(ini.find(std::string(key) + " = "), std::string::npos) << key;
   EXPECT_NE(ini.find("[aam]"), std::string::npos);
   EXPECT_NE(ini.find("split_method = mean"), std::string::npos);
@@ -67,7 +68,10 @@ TEST(area_Options, OutOfRangeValuesAreConfigErrors) {
                        "min_sso = 1",
                        "min_sso = -0.5",
                        "window_size = 1",
-                       "index_cell_size = 0"};
+                       "index_cell_size = 0",
+                       "threads = -1",
+                       "threads = 1025",
+                       "threads = two"};
   for (const char* line : bad) {
     Config cfg =
         Config::from_string(std::string("[area]\n") + line + "\n", "t");
