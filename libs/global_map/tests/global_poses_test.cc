@@ -36,7 +36,7 @@ std::vector<Pose2D> square_loop_truth() {
 }
 
 const Eigen::Matrix3d kChainCov = diag(0.15, 0.15, 0.04);
-const Eigen::Matrix3d kClosureCov = diag(0.5, 0.5, 0.1);
+const Eigen::Matrix3d kClosureCov = diag(0.7, 0.7, 0.12);
 
 // The loop as the robot would map it: arcs i -> i+1 from crossings (small
 // covariance) and a loop-closure arc 0 -> 5 from a map alignment (larger

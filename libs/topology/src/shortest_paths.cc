@@ -11,7 +11,7 @@
 
 namespace hmt::topology {
 
-double arc_cost(const Eigen::Matrix3d& cov, const PathCostOptions& options) {
+double path_cost(const Eigen::Matrix3d& cov, const PathCostOptions& options) {
   const double l = options.angle_length_scale;
   return cov(0, 0) + cov(1, 1) + l * l * cov(2, 2);
 }
@@ -50,27 +50,29 @@ PathTree shortest_paths(const HmtMap& map, AreaId root,
     throw std::out_of_range("shortest_paths: unknown root area " +
                             std::to_string(root));
 
-  // Adjacency lists (ascending neighbour ids, thanks to the ordered arc map)
-  // with the arc costs, built once: O(E log V) overall.
-  std::map<AreaId, std::vector<std::pair<AreaId, double>>> adjacency;
+  // Adjacency lists (ascending neighbour ids, thanks to the ordered arc map),
+  // built once: O(E log V) overall.
+  std::map<AreaId, std::vector<AreaId>> adjacency;
   for (const auto& kv : map.arcs()) {
-    const double c = arc_cost(kv.second.pose.cov, options);
-    adjacency[kv.first.first].emplace_back(kv.first.second, c);
-    adjacency[kv.first.second].emplace_back(kv.first.first, c);
+    adjacency[kv.first.first].push_back(kv.first.second);
+    adjacency[kv.first.second].push_back(kv.first.first);
   }
   for (auto& kv : adjacency) std::sort(kv.second.begin(), kv.second.end());
 
+  // A tentative label: the area's frame composed along the best path found
+  // so far (Eq. 15), its cost, and the parent on that path.
   struct Label {
     double cost;
     size_t hops;
     AreaId parent;
+    PoseGaussian pose;
   };
   std::map<AreaId, Label> best;
   std::map<AreaId, bool> done;
   // Min-heap on (cost, id): equal costs settle the smaller id first.
   using Entry = std::pair<double, AreaId>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  best[root] = {0.0, 0, kNoArea};
+  best[root] = {0.0, 0, kNoArea, PoseGaussian(Pose2D())};
   queue.emplace(0.0, root);
 
   PathTree tree;
@@ -80,29 +82,25 @@ PathTree shortest_paths(const HmtMap& map, AreaId root,
     queue.pop();
     if (done[id] || cost > best[id].cost) continue;
     done[id] = true;
-    const Label& label = best[id];
+    const Label label = best[id];
     PathTree::Node node;
     node.parent = label.parent;
     node.cost = label.cost;
     node.hops = label.hops;
-    // Parents are settled before their children, so Eq. 15 is one
-    // composition per area: (root -> parent) (+) (parent -> id).
-    node.pose = label.parent == kNoArea
-                    ? PoseGaussian(Pose2D())
-                    : compose(tree.nodes.at(label.parent).pose,
-                              map.arc(label.parent, id));
+    node.pose = label.pose;
     tree.nodes.emplace(id, node);
 
     const auto adj = adjacency.find(id);
     if (adj == adjacency.end()) continue;
-    for (const auto& [next, c] : adj->second) {
+    for (AreaId next : adj->second) {
       if (done[next]) continue;
-      const double candidate = label.cost + c;
+      PoseGaussian pose = compose(label.pose, map.arc(id, next));
+      const double candidate = path_cost(pose.cov, options);
       const auto it = best.find(next);
       // Strictly better cost wins; an equal cost keeps the parent settled
       // first (settling is in (cost, id) order, so this is deterministic).
       if (it == best.end() || candidate < it->second.cost) {
-        best[next] = {candidate, label.hops + 1, id};
+        best[next] = {candidate, label.hops + 1, id, std::move(pose)};
         queue.emplace(candidate, next);
       }
     }

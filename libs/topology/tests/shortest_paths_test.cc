@@ -114,7 +114,11 @@ TEST(ShortestPaths, DijkstraPicksTheMoreCertainRoute) {
   EXPECT_EQ(tree.path_to(3), (std::vector<AreaId>{0, 1, 2, 3}));
   EXPECT_EQ(tree.nodes.at(3).hops, 3u);
   EXPECT_EQ(tree.nodes.at(3).parent, 2u);
-  EXPECT_NEAR(tree.nodes.at(3).cost, 3 * (0.01 + 0.01 + 0.0004), 1e-12);
+  // The cost is that of the composed Gaussian, lever arms included (about
+  // 1.06 here against the direct arc's 2.04).
+  EXPECT_NEAR(tree.nodes.at(3).cost, path_cost(tree.pose_of(3).cov), 1e-15);
+  EXPECT_GT(tree.nodes.at(3).cost, 3 * (0.01 + 0.01 + 0.0004));
+  EXPECT_LT(tree.nodes.at(3).cost, 1.0 + 1.0 + 0.04);
   EXPECT_NEAR(tree.pose_of(3).mean.y, 0.1, 1e-12);  // the chain's mean, not 0
   // Area 4 has no arc: not reached.
   EXPECT_FALSE(tree.reaches(4));
@@ -131,31 +135,62 @@ TEST(ShortestPaths, DijkstraPicksTheMoreCertainRoute) {
   tree = shortest_paths(m, 0);
   EXPECT_EQ(tree.path_to(3), (std::vector<AreaId>{0, 3}));
   EXPECT_NEAR(tree.nodes.at(3).cost, (1.0 + 1.0 + 0.04) / 200, 1e-12);
-  // From 2, area 0 is now reached through 3 (0.0204 + 0.0102 < 2 * 0.0204).
+  // From 2, area 0 is still reached through 1: the way through 3 is two
+  // short arcs as well, but 2 -> 3's heading variance (0.0004) acts on the
+  // 6 m arc after it, 2 -> 1's only on a 2 m one.
   const PathTree from2 = shortest_paths(m, 2);
-  EXPECT_EQ(from2.path_to(0), (std::vector<AreaId>{2, 3, 0}));
+  EXPECT_EQ(from2.path_to(0), (std::vector<AreaId>{2, 1, 0}));
+  EXPECT_LT(from2.nodes.at(0).cost,
+            path_cost(compose_path(m, {2, 3, 0}).cov));
 }
 
 TEST(ShortestPaths, AngleLengthScaleTradesHeadingAgainstPosition) {
-  // Route A (via 1) is uncertain in heading, route B (via 2) in position.
+  // Route A (via 1) ends uncertain in heading, route B (via 2) in position.
   HmtMap m = areas(4);
-  const Eigen::Matrix3d heading = diag(0.05, 0.05, 0.5);  // xy 0.005, th 0.25
-  const Eigen::Matrix3d position = diag(0.2, 0.2, 0.01);  // xy 0.08, th 1e-4
-  m.add_arc_measurement(0, 1, PoseGaussian(Pose2D(1, 1, 0), heading));
+  const Eigen::Matrix3d certain = diag(0.05, 0.05, 0.01);  // xy 0.005, th 1e-4
+  const Eigen::Matrix3d heading = diag(0.05, 0.05, 0.5);   // xy 0.005, th 0.25
+  const Eigen::Matrix3d position = diag(0.2, 0.2, 0.01);   // xy 0.08, th 1e-4
+  m.add_arc_measurement(0, 1, PoseGaussian(Pose2D(1, 1, 0), certain));
   m.add_arc_measurement(1, 3, PoseGaussian(Pose2D(1, -1, 0), heading));
   m.add_arc_measurement(0, 2, PoseGaussian(Pose2D(1, -1, 0), position));
   m.add_arc_measurement(2, 3, PoseGaussian(Pose2D(1, 1, 0), position));
-  // l = 1 m: A = 2 * 0.255 loses to B = 2 * 0.0801.
-  EXPECT_NEAR(arc_cost(heading), 0.255, 1e-15);
+  // l = 1 m: A = 0.0102 + 0.2501 loses to B = 0.1602 + 0.0002.
+  EXPECT_NEAR(path_cost(heading), 0.255, 1e-15);
   EXPECT_EQ(shortest_paths(m, 0).path_to(3), (std::vector<AreaId>{0, 2, 3}));
-  // l = 0.1 m: heading matters less, A = 2 * 0.0075 wins over B = 2 * 0.080001.
+  // l = 0.1 m: heading matters less, A = 0.0102 + 0.0025 wins.
   PathCostOptions o;
   o.angle_length_scale = 0.1;
-  EXPECT_NEAR(arc_cost(heading, o), 0.005 + 0.0025, 1e-15);
+  EXPECT_NEAR(path_cost(heading, o), 0.005 + 0.0025, 1e-15);
   EXPECT_EQ(shortest_paths(m, 0, o).path_to(3), (std::vector<AreaId>{0, 1, 3}));
   o.angle_length_scale = 0.0;
   EXPECT_THROW(shortest_paths(m, 0, o), std::invalid_argument);
   EXPECT_THROW(shortest_paths(m, 9), std::out_of_range);
+}
+
+TEST(ShortestPaths, ALongLoopOfSharpArcsDoesNotBeatTheDirectArc) {
+  // Two neighbours 0 and 1 joined by an arc of 0.22 m, and the long way
+  // round a 200 m loop of 20 arcs, each millimetre-sharp in position (as
+  // fine alignments make them) but two of them 1.2 degrees unsure in
+  // heading. Summed arc traces prefer the loop (0.001 against 0.1); its
+  // composed prior is metres wide, the direct arc's is not.
+  HmtMap m = areas(21);
+  m.add_arc_measurement(0, 1, PoseGaussian(Pose2D(1, 0, 0), diag(0.22, 0.22, 0.055)));
+  const Eigen::Matrix3d sharp = diag(0.002, 0.002, 0.0005);
+  const Eigen::Matrix3d unsure = diag(0.002, 0.002, 0.021);
+  // 0 -> 2 -> ... -> 20 -> 1: out 100 m and back, turning once.
+  AreaId prev = 0;
+  for (AreaId a = 2; a <= 20; ++a) {
+    const Pose2D step = a == 11 ? Pose2D(10, 0, M_PI) : Pose2D(10, 0, 0);
+    m.add_arc_measurement(prev, a, PoseGaussian(step, a == 4 || a == 6 ? unsure : sharp));
+    prev = a;
+  }
+  m.add_arc_measurement(20, 1, PoseGaussian(Pose2D(10, 0, M_PI), sharp));
+  const PoseGaussian loop = compose_path(m, {0, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14,
+                                             15, 16, 17, 18, 19, 20, 1});
+  EXPECT_GT(std::sqrt(loop.cov(1, 1)), 1.0);  // the lever arms of 100 m
+  const PathTree tree = shortest_paths(m, 0);
+  EXPECT_EQ(tree.path_to(1), (std::vector<AreaId>{0, 1}));
+  EXPECT_LT(std::sqrt(tree.pose_of(1).cov(1, 1)), 0.25);
 }
 
 TEST(ShortestPaths, EqualCostsGiveADeterministicTree) {
