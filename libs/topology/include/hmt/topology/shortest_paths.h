@@ -55,7 +55,7 @@ double path_cost(const Eigen::Matrix3d& cov,
 struct PathTree {
   struct Node {
     AreaId parent = kNoArea;  // kNoArea for the root
-    double cost = 0.0;        // sum of arc costs from the root
+    double cost = 0.0;        // path_cost() of `pose` (0 for the root)
     size_t hops = 0;          // arcs from the root
     PoseGaussian pose;        // this area's frame in the root's frame (Eq. 15)
   };
