@@ -82,7 +82,8 @@ PathTree shortest_paths(const HmtMap& map, AreaId root,
     queue.pop();
     if (done[id] || cost > best[id].cost) continue;
     done[id] = true;
-    const Label label = best[id];
+    // std::map keeps references valid as the neighbours' labels are added.
+    const Label& label = best[id];
     PathTree::Node node;
     node.parent = label.parent;
     node.cost = label.cost;

@@ -115,7 +115,7 @@ TEST(ShortestPaths, DijkstraPicksTheMoreCertainRoute) {
   EXPECT_EQ(tree.nodes.at(3).hops, 3u);
   EXPECT_EQ(tree.nodes.at(3).parent, 2u);
   // The cost is that of the composed Gaussian, lever arms included (about
-  // 1.06 here against the direct arc's 2.04).
+  // 0.069 here against the direct arc's 2.04).
   EXPECT_NEAR(tree.nodes.at(3).cost, path_cost(tree.pose_of(3).cov), 1e-15);
   EXPECT_GT(tree.nodes.at(3).cost, 3 * (0.01 + 0.01 + 0.0004));
   EXPECT_LT(tree.nodes.at(3).cost, 1.0 + 1.0 + 0.04);

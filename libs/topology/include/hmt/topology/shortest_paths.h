@@ -24,7 +24,7 @@
 // error times the distance still to go, which depend on the whole path. On
 // a long loop closed by fine alignments the arcs are millimetre-certain in
 // position but not in heading: a sum of arc traces preferred fourteen such
-// arcs around a 400 m loop (trace 0.015) to the one direct arc between two
+// arcs round the loop (trace 0.015) to the one direct arc between two
 // neighbours (0.11), and the composed prior came out 2.3 m wide, too wide
 // and too far off for the neighbour to be found (Infinite Corridor soak,
 // third lap). Dijkstra here settles areas in order of their composed cost,
