@@ -155,19 +155,20 @@ bench_ini_get() {
     END { if (!found) exit 1 }' "$1"
 }
 
-# bench_json_cell SCRIPT FORMAT TRAJ OTHER: runs scripts/SCRIPT TRAJ OTHER
-# --json and prints FORMAT (a Python expression over the result `r`), or
+# bench_json_cell SCRIPT FORMAT ARG...: runs scripts/SCRIPT ARG... --json
+# and prints FORMAT (a Python expression over the result `r`), or
 # "FAIL (<its last line of error>)".
 bench_json_cell() {
-  local js
-  if ! js=$("${PYTHON:-/usr/bin/python3}" "$BENCH_REPO/scripts/$1" "$3" "$4" --json 2>&1); then
+  local js script=$1 format=$2
+  shift 2
+  if ! js=$("${PYTHON:-/usr/bin/python3}" "$BENCH_REPO/scripts/$script" "$@" --json 2>&1); then
     echo "FAIL (${js##*$'\n'})"
     return 0
   fi
   "${PYTHON:-/usr/bin/python3}" -c '
 import json, sys
 r = json.loads(sys.argv[1])
-print(eval(sys.argv[2]))' "$js" "$2"
+print(eval(sys.argv[2]))' "$js" "$format"
 }
 
 # bench_relation_cell TRAJ RELATIONS: "0.099 ± 0.121 m, 2.32° (144)" from
@@ -181,6 +182,14 @@ bench_relation_cell() {
 # scripts/ate.py, or "FAIL (...)".
 bench_ate_cell() {
   bench_json_cell ate.py '"%.3f (%.2f)" % (r["rmse_m"], r["max_m"])' "$1" "$2"
+}
+
+# bench_sharpness_cell LOG TRAJ REFERENCE: "0.948", the scan end-point
+# cells TRAJ draws the log with over those REFERENCE draws it with
+# (scripts/map_sharpness.py; below 1: TRAJ's map is the sharper), or
+# "FAIL (...)".
+bench_sharpness_cell() {
+  bench_json_cell map_sharpness.py '"%.3f" % r["ratio"]' "$1" "$2" "$3"
 }
 
 # bench_machine: one line describing the machine.

@@ -269,11 +269,11 @@ for name in $LOGS; do
   mkdir -p "$WORK_DIR/$name"
   OURS_WALL=- OURS_CPU=- OURS_RSS=- OURS_SCANS=- OURS_TRAJ='' OURS_AREAS=- OURS_CLOSURES=-
   MRPT_WALL=- MRPT_CPU=- MRPT_RSS=- MRPT_SCANS=- MRPT_TRAJ='' MRPT_MEAN_TRAJ=''
-  status=() ours_rel=- mrpt_rel=- ours_ate=- mrpt_ate=-
+  status=() ours_rel=- mrpt_rel=- ours_ate=- mrpt_ate=- ours_cells=- mrpt_cells=-
   if ! log_input "$name"; then
     bench_log "$name: FAIL: $ERR"
     FAILED=1
-    ROWS+=("| $name | - | - | - | - | - | - | - | - | - | - | - | - | - | - | - | - | - | FAIL: $ERR |")
+    ROWS+=("| $name | - | - | - | - | - | - | - | - | - | - | - | - | - | - | - | - | - | - | FAIL: $ERR |")
     continue
   fi
   if ! run_ours "$name"; then status+=("ours FAIL: $ERR"); bench_log "$name: ours FAIL: $ERR"; fi
@@ -290,6 +290,11 @@ for name in $LOGS; do
   if [[ -r $ref ]]; then
     [[ -n $OURS_TRAJ ]] && ours_ate=$(bench_ate_cell "$OURS_TRAJ" "$ref")
     [[ -n $MRPT_TRAJ ]] && mrpt_ate=$(bench_ate_cell "$MRPT_TRAJ" "$ref")
+    carmen=$DATASETS/carmen/$name.log.gz
+    if [[ -r $carmen ]]; then
+      [[ -n $OURS_TRAJ ]] && ours_cells=$(bench_sharpness_cell "$carmen" "$OURS_TRAJ" "$ref")
+      [[ -n $MRPT_TRAJ ]] && mrpt_cells=$(bench_sharpness_cell "$carmen" "$MRPT_TRAJ" "$ref")
+    fi
   fi
   # Keep the trajectories next to the table.
   mkdir -p "$OUT_DIR/$name"
@@ -303,7 +308,7 @@ for name in $LOGS; do
     SCAN_NOTE=1
   fi
   if [[ ${#status[@]} -eq 0 ]]; then status=(ok); else FAILED=1; fi
-  ROWS+=("| $name | $(basename "$(config_for "$name")") | $scans | $OURS_WALL | $MRPT_WALL | $(bench_ratio "$MRPT_WALL" "$OURS_WALL") | $OURS_CPU | $MRPT_CPU | $OURS_RSS | $MRPT_RSS | $(bench_ratio "$MRPT_RSS" "$OURS_RSS") | $OURS_AREAS | $OURS_CLOSURES | $ours_ate | $mrpt_ate | $ours_rel | $mrpt_rel | $(join_status) |")
+  ROWS+=("| $name | $(basename "$(config_for "$name")") | $scans | $OURS_WALL | $MRPT_WALL | $(bench_ratio "$MRPT_WALL" "$OURS_WALL") | $OURS_CPU | $MRPT_CPU | $OURS_RSS | $MRPT_RSS | $(bench_ratio "$MRPT_RSS" "$OURS_RSS") | $OURS_AREAS | $OURS_CLOSURES | $ours_ate | $mrpt_ate | $ours_cells | $mrpt_cells | $ours_rel | $mrpt_rel | $(join_status) |")
 done
 
 LOAD_END=$(bench_load)
@@ -323,11 +328,12 @@ report() {
   echo "- both read the same rawlog (CARMEN logs converted once by \`hmt-slam convert --format sf\`)"
   echo "- wall time, CPU time (user + system, all threads) and peak RSS from GNU \`time -v\` of the whole process (reading the log and writing the map included); fastest of $REPEAT run(s) each"
   echo
-  echo "| log | our config | scans | ours wall (s) | MRPT wall (s) | MRPT/ours time | ours CPU (s) | MRPT CPU (s) | ours peak RSS (MB) | MRPT peak RSS (MB) | MRPT/ours RSS | areas | closures | ours ATE | MRPT ATE | ours relation error | MRPT relation error | status |"
-  echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|---|"
+  echo "| log | our config | scans | ours wall (s) | MRPT wall (s) | MRPT/ours time | ours CPU (s) | MRPT CPU (s) | ours peak RSS (MB) | MRPT peak RSS (MB) | MRPT/ours RSS | areas | closures | ours ATE | MRPT ATE | ours map cells / ref | MRPT map cells / ref | ours relation error | MRPT relation error | status |"
+  echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---:|---|---|---|"
   printf '%s\n' "${ROWS[@]}"
   echo
   echo "ATE: position RMSE (max) in metres against \`carmen/NAME.reference.txt.gz\` (a GMapping trajectory, not ground truth) after the best rigid 2D alignment, scans matched by index (scripts/ate.py); \"-\" where a log has none. Areas and closures: ours (summary.json), with MODE=run."
+  echo "Map cells / ref: the 5 cm cells the log's scan end points (below 20 m) fill when drawn at the trajectory's poses, over the same for the reference (scripts/map_sharpness.py): below 1, the trajectory draws the log sharper (more self-consistently) than the reference, which ATE cannot tell; it needs no ground truth."
   echo "Relation error: translational mean ± std, rotational mean (number of relations), against \`relations/NAME.relations\`; \"-\" where a log has none. GMapping's reference trajectory scores 0.0545 ± 0.0728 m, 1.13° (116) on intel."
   echo "MRPT's trajectory is its final most likely particle's path (most_likely_path.txt, one pose per filter update: rbpf-slam updates only after $MRPT_UPDATE of odometry with this ini) expanded to every scan by odometry and matched to the scans by the timestamps of log_estimated_path.txt; it comes from files rbpf-slam always writes, so the timed run is the only run."
   echo "MRPT's odometry noise is not in its ini: it is the motion model stored in the rawlog's actions (\`hmt-slam convert\` writes MRPT's default CActionRobotMovement2D Gaussian model; the Malaga log has its own)."

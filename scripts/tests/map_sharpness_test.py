@@ -1,0 +1,143 @@
+#!/usr/bin/python3
+"""Tests of scripts/map_sharpness.py on a small synthetic CARMEN log.
+
+Run directly or through ctest (map_sharpness_script).
+"""
+import gzip
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCRIPT = os.path.join(HERE, "..", "map_sharpness.py")
+
+
+def wall_ranges(x, y, theta, wall_x=5.0):
+    """181 FLASER beams (1 degree apart from -90) of a robot at (x, y,
+    theta) facing a straight wall x = wall_x; beams missing it read 30 m."""
+    out = []
+    for k in range(181):
+        a = theta + math.radians(k - 90)
+        c = math.cos(a)
+        r = (wall_x - x) / c if c > 1e-6 else 30.0
+        out.append(r if 0 < r < 30 else 30.0)
+    return out
+
+
+def run(*args):
+    return subprocess.run([sys.executable, SCRIPT, *args], capture_output=True, text=True)
+
+
+class MapSharpness(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        d = self.dir.name
+        # The robot drives along y facing the wall, ten scans.
+        self.truth = [(100.0 + k, 0.0, 0.4 * k, 0.0) for k in range(10)]
+        self.log = f"{d}/wall.log.gz"
+        with gzip.open(self.log, "wt") as f:
+            f.write("PARAM robot_frontlaser_offset 0.0\n")
+            for t, x, y, th in self.truth:
+                r = " ".join(f"{v:.3f}" for v in wall_ranges(x, y, th))
+                f.write(f"FLASER 181 {r} {x} {y} {th} {x} {y} {th} {t} host {t}\n")
+        self.true_path = f"{d}/true.txt"
+        self.bent_path = f"{d}/bent.txt"
+        with open(self.true_path, "w") as f:
+            f.writelines(f"{t} {x} {y} {th}\n" for t, x, y, th in self.truth)
+        # Half the scans 0.3 m and 2 degrees off: the wall is drawn twice.
+        with open(self.bent_path, "w") as f:
+            for k, (t, x, y, th) in enumerate(self.truth):
+                if k >= 5:
+                    x, th = x + 0.3, th + math.radians(2)
+                f.write(f"{t} {x} {y} {th}\n")
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def test_the_consistent_trajectory_draws_fewer_cells(self):
+        r = run(self.log, self.true_path, self.bent_path, "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        out = json.loads(r.stdout)
+        self.assertLess(out["trajectory_cells"], out["reference_cells"])
+        self.assertLess(out["ratio"], 0.9)
+        # The other way round (each drawn in the other's frame), the same verdict.
+        back = json.loads(run(self.log, self.bent_path, self.true_path, "--json").stdout)
+        self.assertGreater(back["ratio"], 1.1)
+
+    def test_the_trajectory_is_drawn_in_the_references_frame(self):
+        moved = f"{self.dir.name}/moved.txt"
+        a = 0.7
+        with open(moved, "w") as f:
+            for t, x, y, th in self.truth:
+                f.write(f"{t} {math.cos(a) * x - math.sin(a) * y + 3} "
+                        f"{math.sin(a) * x + math.cos(a) * y - 1} {th + a}\n")
+        # Against the reference it is moved into the reference's frame first:
+        # the same poses there, the same cells.
+        both = json.loads(run(self.log, moved, self.true_path, "--json").stdout)
+        self.assertEqual(both["trajectory_cells"], both["reference_cells"])
+
+    def test_blocks_point_at_the_doubled_wall(self):
+        r = run(self.log, self.bent_path, self.true_path, "--blocks", "2", "--json")
+        out = json.loads(r.stdout)
+        self.assertTrue(out["trajectory_worse"])
+        # The doubled stretch is the wall (x = 5) beside the last five scans
+        # (y from 2 m on).
+        cx, cy = out["trajectory_worse"][0]["centre"]
+        self.assertLess(abs(cx - 5.0), 4.0)
+        self.assertGreater(cy, 0.0)
+
+    def test_png_shows_the_doubled_wall_on_the_left_only(self):
+        png = f"{self.dir.name}/pair.png"
+        r = run(self.log, self.bent_path, self.true_path, "--png", png, "--window", "5,2,3")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        from PIL import Image
+        import numpy as np
+        img = np.asarray(Image.open(png))
+        n = img.shape[0]
+        left, right = img[:, :n], img[:, -n:]
+        # Columns holding wall cells: the wall x = 5 is one column on the
+        # right; on the left its second copy 0.3 m away adds more.
+        def wall_columns(panel):
+            return int(((panel == 0).sum(axis=0) > 5).sum())
+        self.assertGreater(wall_columns(left), wall_columns(right))
+        self.assertGreaterEqual(wall_columns(right), 1)
+
+    def test_png_needs_a_window_and_a_reference(self):
+        png = f"{self.dir.name}/pair.png"
+        self.assertEqual(run(self.log, self.bent_path, self.true_path, "--png", png).returncode, 2)
+        self.assertEqual(run(self.log, self.bent_path, "--png", png, "--window", "5,2,3").returncode, 2)
+        self.assertEqual(run(self.log, self.bent_path, self.true_path, "--png", png,
+                             "--window", "5,2").returncode, 2)
+        self.assertFalse(os.path.exists(png))
+
+    def test_poses_that_match_no_scan_are_an_error(self):
+        other = f"{self.dir.name}/other.txt"
+        with open(other, "w") as f:
+            f.writelines(f"{t + 50} {x} {y} {th}\n" for t, x, y, th in self.truth[:7])
+        r = run(self.log, other)
+        self.assertEqual(r.returncode, 4)
+        self.assertIn("match a scan", r.stderr)
+
+    def test_a_malformed_scan_line_is_an_error(self):
+        bad = f"{self.dir.name}/bad.log"
+        with open(bad, "w") as f:
+            f.write("FLASER 181 1.0 2.0 oops\n")
+        r = run(bad, self.true_path)
+        self.assertEqual(r.returncode, 4)
+        self.assertIn("bad.log:1", r.stderr)
+
+    def test_a_log_without_scans_is_an_error(self):
+        empty = f"{self.dir.name}/empty.log"
+        with open(empty, "w") as f:
+            f.write("PARAM x 1\n")
+        r = run(empty, self.true_path)
+        self.assertEqual(r.returncode, 4)
+        self.assertIn("no FLASER", r.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
