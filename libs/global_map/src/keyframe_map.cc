@@ -24,18 +24,31 @@ std::vector<Pose2D> keyframe_trajectory(const std::vector<AreaVisit>& visits,
     std::vector<double> along(visit.poses.size(), 0.0);
     for (size_t k = 1; k < visit.poses.size(); ++k)
       along[k] = along[k - 1] + (visit.poses[k] - visit.poses[k - 1]).norm();
-    size_t j = 0;  // the nearest node so far; nodes and steps both ascend
+    size_t j = 0;  // the last node at or before the step, else the first
     for (size_t k = 0; k < visit.poses.size(); ++k) {
       const uint64_t step = visit.first_step + k;
       if (step < first || step - first >= count) continue;
-      auto at = [&](size_t n) { return along[nodes[own[n]].step - visit.first_step]; };
       while (j + 1 < own.size() && nodes[own[j + 1]].step <= step) ++j;
-      size_t best = j;
-      if (nodes[own[j]].step < step && j + 1 < own.size() &&
-          std::fabs(at(j + 1) - along[k]) < std::fabs(along[k] - at(j)))
-        best = j + 1;
-      const KeyframeNode& n = nodes[own[best]];
-      out[step - first] = n.global + (visit.poses[k] - n.in_area);
+      // The step seen from node n, placed where the graph put n.
+      auto from = [&](size_t n) {
+        const KeyframeNode& node = nodes[own[n]];
+        return node.global + (visit.poses[k] - node.in_area);
+      };
+      Pose2D p = from(j);
+      if (nodes[own[j]].step < step && j + 1 < own.size()) {
+        // Between two nodes: from each, blended by the share of the path
+        // between them already driven (of the steps, when the robot turned
+        // on the spot), so that the graph's corrections, which differ from
+        // node to node, pass smoothly from one to the next.
+        const uint64_t s0 = nodes[own[j]].step, s1 = nodes[own[j + 1]].step;
+        const double a0 = along[s0 - visit.first_step], a1 = along[s1 - visit.first_step];
+        const double f = a1 > a0 ? (along[k] - a0) / (a1 - a0)
+                                 : static_cast<double>(step - s0) / static_cast<double>(s1 - s0);
+        const Pose2D q = from(j + 1);
+        p = Pose2D(p.x + f * (q.x - p.x), p.y + f * (q.y - p.y),
+                   wrap_angle(p.theta + f * wrap_angle(q.theta - p.theta)));
+      }
+      out[step - first] = p;
       set[step - first] = 1;
     }
   }

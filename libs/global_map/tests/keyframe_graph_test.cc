@@ -216,6 +216,56 @@ TEST(KeyframeGraph, WithoutMatchesThePathStillJoinsTheAreas) {
   EXPECT_LT(position_error(g.areas.poses.at(2).mean, s.area2), 0.1);
 }
 
+TEST(KeyframeTrajectory, StepsBetweenTwoNodesPassSmoothlyFromOneCorrectionToTheNext) {
+  // One visit of 11 steps 0.1 m apart along x in its area's frame; nodes at
+  // steps 0 and 10. The graph moved the second node 0.1 m further in y and
+  // turned it 0.02 rad more than the first: seen from the second node, the
+  // steps lie about 0.09 m from where the first puts them, so placing each
+  // from the nearer node alone would jump 0.09 m half way. Blended, the
+  // steps go from the one correction to the other a little at a time.
+  AreaVisit v;
+  v.area = 1;
+  v.first_step = 0;
+  for (int k = 0; k <= 10; ++k) v.poses.emplace_back(0.1 * k, 0.0, 0.0);
+  std::vector<KeyframeNode> nodes(2);
+  nodes[0] = {1, 0, 0, v.poses[0], Pose2D(5.0, 2.0, 0.0)};
+  nodes[1] = {1, 0, 10, v.poses[10], Pose2D(6.0, 2.1, 0.02)};
+  const std::vector<Pose2D> t = keyframe_trajectory({v}, nodes, 0, 11);
+  ASSERT_EQ(t.size(), 11u);
+  EXPECT_NEAR(t[0].x, 5.0, 1e-12);
+  EXPECT_NEAR(t[0].y, 2.0, 1e-12);
+  EXPECT_NEAR(t[10].y, 2.1, 1e-12);
+  EXPECT_NEAR(t[10].theta, 0.02, 1e-12);
+  for (int k = 1; k <= 10; ++k) {
+    EXPECT_NEAR(t[k].theta - t[k - 1].theta, 0.002, 1e-12) << "step " << k;
+    EXPECT_NEAR(t[k].x - t[k - 1].x, 0.1, 1e-3) << "step " << k;
+    EXPECT_GT(t[k].y - t[k - 1].y, 0.005) << "step " << k;
+    EXPECT_LT(t[k].y - t[k - 1].y, 0.012) << "step " << k;
+  }
+  // Beyond the last node, the steps follow it alone.
+  AreaVisit longer = v;
+  longer.poses.emplace_back(1.1, 0.0, 0.0);
+  const std::vector<Pose2D> u = keyframe_trajectory({longer}, nodes, 0, 12);
+  EXPECT_NEAR(u[11].x, 6.0 + 0.1 * std::cos(0.02), 1e-9);
+  EXPECT_NEAR(u[11].y, 2.1 + 0.1 * std::sin(0.02), 1e-9);
+}
+
+TEST(KeyframeTrajectory, NodesAtOnePlaceBlendByStep) {
+  // The robot turns on the spot between the two nodes: no path length, so
+  // the blend goes by steps.
+  AreaVisit v;
+  v.area = 1;
+  for (int k = 0; k <= 4; ++k) v.poses.emplace_back(0.0, 0.0, 0.1 * k);
+  std::vector<KeyframeNode> nodes(2);
+  nodes[0] = {1, 0, 0, v.poses[0], Pose2D(1.0, 0.0, 0.0)};
+  nodes[1] = {1, 0, 4, v.poses[4], Pose2D(1.2, 0.0, 0.4)};
+  const std::vector<Pose2D> t = keyframe_trajectory({v}, nodes, 0, 5);
+  for (int k = 0; k <= 4; ++k) {
+    EXPECT_NEAR(t[k].x, 1.0 + 0.05 * k, 1e-12) << "step " << k;
+    EXPECT_NEAR(t[k].theta, 0.1 * k, 1e-12) << "step " << k;
+  }
+}
+
 TEST(KeyframeGraph, SameInputSameOutputWhateverTheThreads) {
   const Scenario s(Pose2D(0.3, -0.2, 0.04), diag(0.1, 0.03));
   // Twice on one thread, and on three.

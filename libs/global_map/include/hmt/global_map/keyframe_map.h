@@ -1,12 +1,15 @@
 // What the keyframe graph (keyframe_graph.h) gives a person: the robot's
 // trajectory and one occupancy grid in the global frame.
 //
-// Trajectory: every log step is placed from the keyframe node of its own
-// area visit nearest to it along the path, by the in-area path between the
-// two (node's optimised pose composed with the step's pose seen from the
-// node's, both in the area's frame). A step never depends on another visit's
-// area pose, so the trajectory has no jumps at area switches, and the error
-// of a step is the in-area drift over at most half a keyframe spacing.
+// Trajectory: every log step is placed from the keyframe nodes of its own
+// area visit on either side of it along the path, by the in-area path
+// between each and the step (the node's optimised pose composed with the
+// step's pose seen from the node's, both in the area's frame), the two
+// blended by how far along the path from one node to the next the step
+// lies; before a visit's first node or after its last, from that node
+// alone. A step never depends on another visit's area pose, so the
+// trajectory has no jumps at area switches, nor where the graph corrected
+// two consecutive nodes differently.
 //
 // Grid: the keyframe scans inserted (grid::insert_scan) at their optimised
 // poses into one grid, in path order: one map made from the aligned scans,
