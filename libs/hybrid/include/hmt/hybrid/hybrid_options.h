@@ -22,11 +22,17 @@ struct HybridOptions {
   // particles do (each particle carries one topological path): a hypothesis
   // of probability p holds about N p particles, but never fewer than this
   // (so an unlikely topology can still track its pose) nor more than N.
-  // 0 (the default) gives every hypothesis the full set: on Malaga, sharing
-  // with a floor of 10 kept rival topologies alive longer (4 at the end
-  // instead of 1, 2 closures accepted instead of 7) for no saving in peak
-  // memory, so it is an option, not the default.
-  int min_particles = 0;
+  // 0 gives every hypothesis the full set. With a floor of 10 of 30 (the
+  // default), the Infinite Corridor's seeds 1-8 take 25-41 s and 95-144 MB
+  // instead of 29-44 s and 99-201 MB, at a position error of 0.73-1.31 m
+  // (mean 0.95) instead of 0.66-2.07 m (mean 1.22): rival topologies cost
+  // a third of a full set each while they are unlikely. Seeds 1-4 of the
+  // other logs: intel 0.062-0.078 m (relations 0.043-0.051 m) against
+  // 0.059-0.106 m (0.046-0.050 m) at 57-67 MB against 87 MB, fhw 0.13-0.16
+  // against 0.14-0.22 m; csail 0.13-0.28 against 0.13-0.18 m, its dead-end
+  // branches turned by 2-3 degrees, their maps as sharp
+  // (scripts/map_sharpness.py); the rest alike.
+  int min_particles = 10;
   // At a new-area event each hypothesis's weight is also multiplied by the
   // event's evidence, sum over its outcomes of F(gamma) over eta (the
   // optimal proposal's normaliser, 002 Eq. 6, as a Bayes factor against the
