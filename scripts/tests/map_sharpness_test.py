@@ -122,22 +122,19 @@ class MapSharpness(unittest.TestCase):
         self.assertEqual(r.returncode, 4)
         self.assertIn("match a scan", r.stderr)
 
-    def test_a_malformed_scan_line_is_an_error(self):
-        bad = f"{self.dir.name}/bad.log"
-        with open(bad, "w") as f:
-            f.write("FLASER 181 1.0 2.0 oops\n")
-        r = run(bad, self.true_path)
+    def assert_log_refused(self, name, text, message):
+        path = f"{self.dir.name}/{name}"
+        with open(path, "w") as f:
+            f.write(text)
+        r = run(path, self.true_path)
         self.assertEqual(r.returncode, 4)
-        self.assertIn("bad.log:1", r.stderr)
+        self.assertIn(message, r.stderr)
+
+    def test_a_malformed_scan_line_is_an_error(self):
+        self.assert_log_refused("bad.log", "FLASER 181 1.0 2.0 oops\n", "bad.log:1")
 
     def test_a_log_without_scans_is_an_error(self):
-        empty = f"{self.dir.name}/empty.log"
-        with open(empty, "w") as f:
-            f.write("PARAM x 1\n")
-        r = run(empty, self.true_path)
-        self.assertEqual(r.returncode, 4)
-        self.assertIn("no FLASER", r.stderr)
-
+        self.assert_log_refused("empty.log", "PARAM x 1\n", "no FLASER")
 
 if __name__ == "__main__":
     unittest.main()
