@@ -22,7 +22,8 @@ import sys
 import numpy as np
 
 
-def load_positions(path):
+def load_poses(path):
+    """(t, x, y, theta) rows; theta from the quaternion of a TUM line."""
     opener = gzip.open if path.endswith(".gz") else open
     rows = []
     try:
@@ -34,7 +35,9 @@ def load_positions(path):
                 if len(s) not in (4, 8):
                     raise SystemExit(f"ate.py: {path}:{n}: expected 4 or 8 fields, got {len(s)}")
                 try:
-                    rows.append((float(s[0]), float(s[1]), float(s[2])))
+                    theta = (2.0 * math.atan2(float(s[6]), float(s[7])) if len(s) == 8
+                             else float(s[3]))
+                    rows.append((float(s[0]), float(s[1]), float(s[2]), theta))
                 except ValueError:
                     raise SystemExit(f"ate.py: {path}:{n}: not a number")
     except OSError as e:
@@ -44,26 +47,43 @@ def load_positions(path):
     return np.array(rows)
 
 
+def load_positions(path):
+    """(t, x, y) rows."""
+    return load_poses(path)[:, :3]
+
+
+def nearest_times(times, queries, tol=0.01):
+    """For each query time, the index of the nearest of `times`, and whether
+    it lies within `tol`: (mask, indices)."""
+    order = np.argsort(times, kind="stable")
+    t = times[order]
+    i = np.clip(np.searchsorted(t, queries), 1, max(len(t) - 1, 1))
+    lo = np.clip(i - 1, 0, len(t) - 1)
+    hi = np.clip(i, 0, len(t) - 1)
+    near = np.where(np.abs(t[lo] - queries) <= np.abs(t[hi] - queries), lo, hi)
+    return np.abs(t[near] - queries) <= tol, order[near]
+
+
 def match(est, ref, tol=0.01):
     """Positions of the pose pairs: by index, or by nearest timestamp."""
     if len(est) == len(ref):
         return est[:, 1:], ref[:, 1:]
-    order = np.argsort(ref[:, 0], kind="stable")
-    times = ref[order, 0]
-    i = np.clip(np.searchsorted(times, est[:, 0]), 1, max(len(times) - 1, 1))
-    lo = np.clip(i - 1, 0, len(times) - 1)
-    hi = np.clip(i, 0, len(times) - 1)
-    near = np.where(np.abs(times[lo] - est[:, 0]) <= np.abs(times[hi] - est[:, 0]), lo, hi)
-    ok = np.abs(times[near] - est[:, 0]) <= tol
-    return est[ok, 1:], ref[order[near[ok]], 1:]
+    ok, index = nearest_times(ref[:, 0], est[:, 0], tol)
+    return est[ok, 1:], ref[index[ok], 1:]
+
+
+def rigid_fit(est, ref):
+    """The rotation R and the two means with R (est - mean_est) + mean_ref
+    closest to ref."""
+    me, mr = est.mean(axis=0), ref.mean(axis=0)
+    u, _, vt = np.linalg.svd((est - me).T @ (ref - mr))
+    d = np.sign(np.linalg.det(vt.T @ u.T))
+    return vt.T @ np.diag([1.0, d]) @ u.T, me, mr
 
 
 def align(est, ref):
     """est moved by the rotation and translation that best fit it to ref."""
-    me, mr = est.mean(axis=0), ref.mean(axis=0)
-    u, _, vt = np.linalg.svd((est - me).T @ (ref - mr))
-    d = np.sign(np.linalg.det(vt.T @ u.T))
-    r = vt.T @ np.diag([1.0, d]) @ u.T
+    r, me, mr = rigid_fit(est, ref)
     return (r @ (est - me).T).T + mr
 
 

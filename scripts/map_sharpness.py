@@ -43,7 +43,7 @@ from collections import Counter
 import numpy as np
 
 sys.path.insert(0, __file__.rsplit("/", 1)[0])
-from ate import load_positions  # noqa: E402
+from ate import load_poses, nearest_times, rigid_fit  # noqa: E402
 
 
 def fail(msg):
@@ -98,35 +98,15 @@ def load_scans(path):
     return scans
 
 
-def load_poses(path):
-    """(t, x, y, theta) rows: ate.py reads t, x, y; theta is read here."""
-    xyz = load_positions(path)
-    opener = gzip.open if path.endswith(".gz") else open
-    th = []
-    with opener(path, "rt") as f:
-        for line in f:
-            s = line.split()
-            if not s or s[0].startswith("#"):
-                continue
-            th.append(2 * math.atan2(float(s[6]), float(s[7])) if len(s) == 8 else float(s[3]))
-    return np.column_stack([xyz, th])
-
-
 def match_scans(poses, scans, path):
     """Scan index per pose: by index when the counts agree, else the scan
     with the nearest timestamp within 0.01 s."""
     if len(poses) == len(scans):
         return poses, np.arange(len(scans))
-    times = np.array([s[0] for s in scans])
-    order = np.argsort(times, kind="stable")
-    i = np.clip(np.searchsorted(times[order], poses[:, 0]), 1, max(len(times) - 1, 1))
-    lo, hi = np.clip(i - 1, 0, len(times) - 1), np.clip(i, 0, len(times) - 1)
-    t = times[order]
-    near = np.where(np.abs(t[lo] - poses[:, 0]) <= np.abs(t[hi] - poses[:, 0]), lo, hi)
-    ok = np.abs(t[near] - poses[:, 0]) <= 0.01
+    ok, index = nearest_times(np.array([s[0] for s in scans]), poses[:, 0])
     if ok.sum() < max(len(poses), len(scans)) / 2:
         fail(f"only {ok.sum()} of {len(poses)} poses of {path} match a scan of the log")
-    return poses[ok], order[near[ok]]
+    return poses[ok], index[ok]
 
 
 def end_point_cells(poses, index, scans, cell, max_range, transform=None):
@@ -165,15 +145,6 @@ def draw_pair(drawn, cell, window, path):
         fail(f"{path}: {e.strerror or e}")
 
 
-def rigid_fit(est, ref):
-    """R, t with R est + t closest to ref (positions, as ate.py aligns)."""
-    me, mr = est.mean(axis=0), ref.mean(axis=0)
-    u, _, vt = np.linalg.svd((est - me).T @ (ref - mr))
-    d = np.sign(np.linalg.det(vt.T @ u.T))
-    r = vt.T @ np.diag([1.0, d]) @ u.T
-    return r, mr - r @ me
-
-
 def main(argv):
     opts = {"--cell": 0.05, "--max-range": 20.0, "--blocks": 0, "--png": "", "--window": ""}
     args = []
@@ -183,7 +154,7 @@ def main(argv):
             try:
                 opts[a] = type(opts[a])(next(it))
             except (StopIteration, ValueError):
-                print(f"map_sharpness.py: {a} needs a number", file=sys.stderr)
+                print(f"map_sharpness.py: {a} needs a value", file=sys.stderr)
                 return 2
         elif a != "--json":
             args.append(a)
@@ -215,7 +186,8 @@ def main(argv):
         common = np.intersect1d(ie, ir)
         fe = pe[np.isin(ie, common)][np.argsort(ie[np.isin(ie, common)], kind="stable")]
         fr = pr[np.isin(ir, common)][np.argsort(ir[np.isin(ir, common)], kind="stable")]
-        r, t = rigid_fit(fe[:, 1:3], fr[:, 1:3])
+        r, me, mr = rigid_fit(fe[:, 1:3], fr[:, 1:3])
+        t = mr - r @ me
         rot = math.atan2(r[1, 0], r[0, 0])
 
         def move(p, th):

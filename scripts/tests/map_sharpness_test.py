@@ -122,6 +122,14 @@ class MapSharpness(unittest.TestCase):
         self.assertEqual(r.returncode, 4)
         self.assertIn("match a scan", r.stderr)
 
+    def test_a_malformed_heading_is_an_error(self):
+        tum = f"{self.dir.name}/bad.tum"
+        with open(tum, "w") as f:
+            f.write("100.0 0.0 0.0 0.0 0.0 0.0 oops 1.0\n")
+        r = run(self.log, tum)
+        self.assertEqual(r.returncode, 4)
+        self.assertIn("bad.tum:1: not a number", r.stderr)
+
     def assert_log_refused(self, name, text, message):
         path = f"{self.dir.name}/{name}"
         with open(path, "w") as f:
