@@ -13,7 +13,8 @@ motion of 0.3-0.4 m: the trajectory cannot measure them; on Intel 28 of the
 144 matched, leaving the 116 usable relations of the datasets' README).
 
 Usage: relation_error.py TRAJECTORY RELATIONS [--json] [--worst N [--against OTHER]]
-TRAJECTORY: TUM ("t x y z qx qy qz qw") or "t x y theta" per line.
+TRAJECTORY, OTHER: TUM ("t x y z qx qy qz qw") or "t x y theta" per line,
+gzip if the name ends in .gz.
 
 --worst N lists the N relations with the largest translational error (scan
 indices, the true distance, both errors) and the mean without them; with
@@ -30,25 +31,14 @@ import json
 import math
 import sys
 
+sys.path.insert(0, __file__.rsplit("/", 1)[0])
+from ate import load_poses  # noqa: E402
+
 
 def load_trajectory(path):
-    traj = []
-    with open(path) as f:
-        for n, line in enumerate(f, 1):
-            s = line.split()
-            if not s or s[0].startswith("#"):
-                continue
-            v = [float(x) for x in s]
-            if len(v) == 8:
-                qz, qw = v[6], v[7]
-                theta = 2.0 * math.atan2(qz, qw)
-            elif len(v) == 4:
-                theta = v[3]
-            else:
-                raise SystemExit(f"{path}:{n}: expected 4 or 8 fields, got {len(v)}")
-            traj.append((v[0], v[1], v[2], theta))
-    traj.sort(key=lambda p: p[0])
-    return traj
+    """(t, x, y, theta) tuples in time order; gzip if the name ends in .gz
+    (the datasets' references are), with ate.py's clear errors."""
+    return sorted(tuple(float(v) for v in row) for row in load_poses(path))
 
 
 def wrap(a):

@@ -3,7 +3,9 @@
 
 Run directly or through ctest (relation_error_script).
 """
+import gzip
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -61,6 +63,23 @@ class RelationError(unittest.TestCase):
         self.assertIn("other 0.320 m", lines[1])
         self.assertIn("between them 0.020 m", lines[1])
         self.assertIn("without these 1: 0.0000 m over 2", lines[2])
+
+    def test_a_gzipped_other_trajectory_is_read(self):
+        # The datasets' references are gzipped (NAME.reference.txt.gz).
+        gz = self.other + ".gz"
+        with open(self.other, "rb") as src, gzip.open(gz, "wb") as dst:
+            shutil.copyfileobj(src, dst)
+        r = run(self.est, self.rel, "--worst", "1", "--against", gz)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("other 0.320 m", r.stdout.splitlines()[1])
+
+    def test_a_malformed_trajectory_is_a_clear_error(self):
+        bad = os.path.join(self.dir.name, "bad.txt")
+        with open(bad, "w") as f:
+            f.write("10 0 0\n")
+        r = run(bad, self.rel)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("expected 4 or 8 fields", r.stderr)
 
     def test_bad_options_are_refused(self):
         self.assertNotEqual(run(self.est, self.rel, "--worst", "x").returncode, 0)
