@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -19,6 +20,12 @@ constexpr double kReachSafety = 1.5;
 SsoGraph::SsoGraph(const AreaOptions& options, std::shared_ptr<WorkerPool> pool)
     : options_(options), pool_(std::move(pool)), point_cell_(2.0 * options.sso.delta) {
   options_.validate();
+}
+
+void SsoGraph::use_pair_cache(std::shared_ptr<SsoPairCache> cache) {
+  if (!nodes_.empty())
+    throw std::logic_error("SsoGraph::use_pair_cache: the graph already has keyframes");
+  cache_ = std::move(cache);
 }
 
 uint64_t SsoGraph::point_key(double x, double y) const {
@@ -76,6 +83,7 @@ void SsoGraph::add(int id, const Keyframe& kf) {
   n.id = id;
   n.pose = kf.pose;
   n.scan = PreparedScan(kf.scan, options_.sso);
+  if (cache_) n.key = keyframe_key(kf, options_.sso);
   n.global.reserve(n.scan.size());
   for (const Point2D& p : n.scan.points())
     n.global.push_back(kf.pose.mean.transform(p));
@@ -214,7 +222,14 @@ void SsoGraph::compute_edges_probabilistic(uint32_t slot) {
   pair_sso_.assign(touched_.size(), 0.0);
   const auto evaluate = [&](size_t k) {
     const Node& b = nodes_[touched_[k]];
+    if (cache_) {
+      if (const std::optional<double> v = cache_->find(a.key, b.key)) {
+        pair_sso_[k] = *v;
+        return;
+      }
+    }
     pair_sso_[k] = scan_sso(a.scan, a.pose, b.scan, b.pose, options_.sso);
+    if (cache_) cache_->put(a.key, b.key, pair_sso_[k]);
   };
   if (pool_ && touched_.size() > 1) {
     pool_->parallel_for(touched_.size(), evaluate);

@@ -209,6 +209,7 @@ bool TransitionModel::same_area(const topology::Area& area, const Pose2D& robot,
     order.resize(static_cast<size_t>(opt_.area_check_keyframes));
   std::sort(order.begin(), order.end());
   area::SsoGraph graph(area_);
+  graph.use_pair_cache(area_check_pairs_);
   int id = 0;
   for (size_t i : order)
     graph.add(id++, {area::PoseGaussian(area.keyframes[i].pose), area.keyframes[i].scan});

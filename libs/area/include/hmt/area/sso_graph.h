@@ -40,6 +40,7 @@
 #include "hmt/area/keyframe.h"
 #include "hmt/area/ncut.h"
 #include "hmt/area/scan_sso.h"
+#include "hmt/area/sso_pair_cache.h"
 #include "hmt/common/worker_pool.h"
 
 namespace hmt::checkpoint {
@@ -49,7 +50,8 @@ struct Access;  // hmt/checkpoint/checkpoint.h
 namespace hmt::area {
 
 class SsoGraph {
-  // Checkpoints save and restore every member, bit for bit.
+  // Checkpoints save and restore every member, bit for bit (but for the pair
+  // cache and the keys that go with it, see use_pair_cache).
   friend struct hmt::checkpoint::Access;
 
  public:
@@ -57,6 +59,12 @@ class SsoGraph {
   // task per pair, joined in slot order, so the graph does not depend on
   // it); null evaluates them on the calling thread.
   explicit SsoGraph(const AreaOptions& options, std::shared_ptr<WorkerPool> pool = nullptr);
+  // Probabilistic pairs are looked up in (and added to) `cache` before they
+  // are computed: the same graph, with the pairs seen before not matched
+  // again (sso_pair_cache.h). Only on an empty graph (throws
+  // std::logic_error otherwise): every node's key is taken when it is
+  // added. Neither the cache nor the keys are checkpointed state.
+  void use_pair_cache(std::shared_ptr<SsoPairCache> cache);
 
   // Adds the keyframe and its edges to every stored keyframe with SSO >=
   // min_sso. Throws std::invalid_argument if the id is already present.
@@ -101,6 +109,7 @@ class SsoGraph {
     int id = -1;
     PoseGaussian pose;
     PreparedScan scan;            // robot frame (probabilistic pairs)
+    uint64_t key = 0;             // keyframe_key(), with a pair cache
     std::vector<Point2D> global;  // scan points in the common frame
     Box box{0, 0, 0, 0};          // of `global`, grown by the reach
     std::vector<Adj> adj;
@@ -121,6 +130,7 @@ class SsoGraph {
 
   AreaOptions options_;
   std::shared_ptr<WorkerPool> pool_;  // null: pairs on the calling thread
+  std::shared_ptr<SsoPairCache> cache_;  // null: every pair computed
   std::vector<Node> nodes_;  // by slot
   std::vector<uint32_t> free_slots_;
   std::unordered_map<int, uint32_t> slot_of_;

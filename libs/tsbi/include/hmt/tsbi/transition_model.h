@@ -70,6 +70,7 @@
 #include <vector>
 
 #include "hmt/area/area_options.h"
+#include "hmt/area/sso_pair_cache.h"
 #include "hmt/metric_slam/scan_matcher.h"
 #include "hmt/metric_slam/scan_points.h"
 #include "hmt/common/worker_pool.h"
@@ -211,6 +212,9 @@ class TransitionModel {
   double gain_;
   area::AreaOptions area_;
   std::shared_ptr<WorkerPool> pool_;
+  // The area check's keyframe pairs, which come back event after event
+  // (sso_pair_cache.h); it changes no result.
+  std::shared_ptr<area::SsoPairCache> area_check_pairs_ = std::make_shared<area::SsoPairCache>();
   // Match fields by map. The entry holds the map too, so that its address
   // cannot be reused by another map while the entry lives.
   struct CachedField {
