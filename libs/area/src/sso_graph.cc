@@ -23,7 +23,7 @@ SsoGraph::SsoGraph(const AreaOptions& options, std::shared_ptr<WorkerPool> pool)
 }
 
 void SsoGraph::use_pair_cache(std::shared_ptr<SsoPairCache> cache) {
-  if (!nodes_.empty())
+  if (cache && !nodes_.empty())
     throw std::logic_error("SsoGraph::use_pair_cache: the graph already has keyframes");
   cache_ = std::move(cache);
 }

@@ -101,11 +101,20 @@ TEST(area_SsoPairCache, GraphsBuiltThroughTheCacheAreTheSame) {
   EXPECT_GT(cache->hits(), plain.num_edges() / 2);
 }
 
-TEST(area_SsoPairCache, OnlyAnEmptyGraphTakesACache) {
+TEST(area_SsoPairCache, OnlyAnEmptyGraphTakesACacheAndADetachedOneFillsNoMore) {
   const auto kfs = walk();
+  auto cache = std::make_shared<SsoPairCache>();
   SsoGraph g(probabilistic());
-  g.add(0, kfs[0]);
+  g.use_pair_cache(cache);
+  for (int i = 0; i < 4; ++i) g.add(i, kfs[static_cast<size_t>(i)]);
+  const size_t held = cache->size();
+  EXPECT_GT(held, 0u);
   EXPECT_THROW(g.use_pair_cache(std::make_shared<SsoPairCache>()), std::logic_error);
+  g.use_pair_cache(nullptr);
+  g.add(4, kfs[4]);
+  g.add(5, kfs[5]);
+  EXPECT_EQ(cache->size(), held);
+  EXPECT_GT(g.num_edges(), 4u);  // the later keyframes still got their edges
 }
 
 }  // namespace

@@ -214,6 +214,8 @@ bool TransitionModel::same_area(const topology::Area& area, const Pose2D& robot,
   for (size_t i : order)
     graph.add(id++, {area::PoseGaussian(area.keyframes[i].pose), area.keyframes[i].scan});
   std::vector<char> in_latest(order.size(), 0);
+  // The latest scans' pairs are new at every event: not worth keeping.
+  graph.use_pair_cache(nullptr);
   for (const PosedScan& ps : obs.scans) {
     graph.add(id++, {area::PoseGaussian(robot + ps.pose), *ps.scan});
     in_latest.push_back(1);

@@ -61,9 +61,11 @@ class SsoGraph {
   explicit SsoGraph(const AreaOptions& options, std::shared_ptr<WorkerPool> pool = nullptr);
   // Probabilistic pairs are looked up in (and added to) `cache` before they
   // are computed: the same graph, with the pairs seen before not matched
-  // again (sso_pair_cache.h). Only on an empty graph (throws
-  // std::logic_error otherwise): every node's key is taken when it is
-  // added. Neither the cache nor the keys are checkpointed state.
+  // again (sso_pair_cache.h). A cache is taken only by an empty graph
+  // (std::logic_error otherwise): every node's key is taken when it is
+  // added. Null detaches it, so that the pairs of keyframes added from
+  // then on, which will not come back, do not fill it. Neither the cache
+  // nor the keys are checkpointed state.
   void use_pair_cache(std::shared_ptr<SsoPairCache> cache);
 
   // Adds the keyframe and its edges to every stored keyframe with SSO >=
