@@ -144,5 +144,6 @@ class MapSharpness(unittest.TestCase):
     def test_a_log_without_scans_is_an_error(self):
         self.assert_log_refused("empty.log", "PARAM x 1\n", "no FLASER")
 
+
 if __name__ == "__main__":
     unittest.main()
