@@ -5,11 +5,11 @@
 // SsoGraph at every event, for every candidate area of every hypothesis,
 // from the area's keyframes nearest to the robot; those keyframes' pairs
 // come back from one event to the next: on Intel they were two thirds of
-// the check's scan matches, three quarters of them repeats. A pair's SSO is a pure function of the two
-// keyframes (poses, scans) and the SSO options, so a cached value is the
-// value recomputing would give, to the bit (scan_sso is symmetric in its
-// two scans to the bit as well), and a graph built with the cache is the
-// graph built without it.
+// the check's scan matches, three quarters of them repeats. A pair's SSO
+// is a pure function of the two keyframes (poses, scans) and the SSO
+// options, so a cached value is the value recomputing would give, to the
+// bit (scan_sso is symmetric in its two scans to the bit as well), and a
+// graph built with the cache is the graph built without it.
 //
 // Keyframes are identified by content (keyframe_key: every bit of the pose,
 // of the scan and of the options, hashed to 64 bits), not by address or
@@ -25,6 +25,7 @@
 #include <mutex>
 #include <optional>
 #include <unordered_map>
+#include <utility>
 
 #include "hmt/area/area_options.h"
 #include "hmt/area/keyframe.h"
