@@ -204,7 +204,7 @@ struct Access {
     cereal::size_type k = f.keyframes_.size();
     ar(cereal::make_size_tag(k));
     if constexpr (kLoading<A>) f.keyframes_.resize(static_cast<size_t>(k));
-    for (auto& kf : f.keyframes_) ar(kf.step, kf.scan);
+    for (auto& kf : f.keyframes_) ar(kf.step, kf.scan, kf.pose);
     ar(f.next_hypothesis_id_, f.has_keyframe_, f.last_keyframe_pose_, f.step_, f.time_,
        f.transitions_, f.acceptances_, f.accepted_path_, f.stats_);
   }

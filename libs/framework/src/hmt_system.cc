@@ -57,7 +57,7 @@ HmtSystem::~HmtSystem() {
 
 void HmtSystem::resume(const topology::Session& session) {
   if (started_) throw Error(ExitCode::kInternal, "HmtSystem::resume after start()");
-  filter_.resume(session);
+  filter_.resume(session, partitioner_);
   fed_ = session.steps;
 }
 

@@ -110,7 +110,7 @@ std::optional<area::Keyframe> HybridFilter::keyframe_due(const LogStep& step) {
   if (!area::enough_returns(step.scan)) return std::nullopt;
   has_keyframe_ = true;
   last_keyframe_pose_ = pose;
-  keyframes_.push_back({step_, std::make_shared<const LaserScan>(step.scan)});
+  keyframes_.push_back({step_, std::make_shared<const LaserScan>(step.scan), pose});
   ++stats_.keyframes;
   for (Hypothesis& hh : hyps_)
     hh.map.add_keyframe(hh.current_area(), {hh.filter.best().path.back(), step.scan});
@@ -532,7 +532,7 @@ size_t HybridFilter::map_memory_bytes() const {
   return tally.bytes();
 }
 
-topology::Session HybridFilter::session() const {
+topology::Session HybridFilter::session(const area::OnlinePartitioner& partitioner) const {
   topology::Session s;
   s.steps = stats_.steps;
   s.time = time_;
@@ -550,10 +550,14 @@ topology::Session HybridFilter::session() const {
     sh.pending_closures = h.pending_closures;
     s.hypotheses.push_back(std::move(sh));
   }
+  for (int id : partitioner.window()) {
+    const KeyframeRecord& kf = keyframes_[static_cast<size_t>(id)];
+    s.area_graph.push_back({kf.pose, *kf.scan});
+  }
   return s;
 }
 
-void HybridFilter::resume(const topology::Session& s) {
+void HybridFilter::resume(const topology::Session& s, area::OnlinePartitioner& partitioner) {
   if (!hyps_.empty() || stats_.steps != 0)
     throw Error(ExitCode::kInternal, "resume() after the first step");
   if (s.hypotheses.empty()) throw InputError("the saved run has no hypotheses");
@@ -577,6 +581,20 @@ void HybridFilter::resume(const topology::Session& s) {
     hyps_.push_back(std::move(h));
   }
   normalise_and_prune();
+  // The area abstraction's graph as it was saved. Started empty, it would
+  // see only the keyframes after the resume, and the current area would be
+  // cut tens of steps later than in the uninterrupted run (the Malaga log's
+  // fourth area at step 175 instead of 163): every later new-area event,
+  // the ones that close loops included, would come late or not at all.
+  // These keyframes precede the particles' paths (step 0 < the first step
+  // of every path), so, like an earlier area visit's, they seed no map and
+  // pose no observation.
+  for (const topology::Keyframe& kf : s.area_graph) {
+    partitioner.add_keyframe(area::Keyframe{area::PoseGaussian(kf.pose), kf.scan});
+    keyframes_.push_back({0, std::make_shared<const LaserScan>(kf.scan), kf.pose});
+    has_keyframe_ = true;
+    last_keyframe_pose_ = kf.pose;
+  }
 }
 
 topology::HmtMap HybridFilter::final_map(

@@ -160,6 +160,31 @@ TEST(HybridFilter, ResumedRunStillAlignsTheClosuresMadeBeforeTheSave) {
 // is held by hypotheses of 0.995 in all (descendants of the one that made
 // it): that closure is accepted and fused into every survivor's arcs, the
 // hypothesis without it dropped, and the closures made since stay pending.
+// A resumed run's area abstraction holds the graph it held when the run was
+// saved: started empty, it would cut the current area later than the
+// uninterrupted run (and every event after, loop closures included).
+TEST(HybridFilter, ResumeRestoresTheAreaAbstractionsGraph) {
+  const topology::Session s = saved_after(testing_ring::ring_run(7), 60);
+  ASSERT_GE(s.area_graph.size(), 2u);
+  HybridFilter g(ring_options());
+  g.resume(s);
+  const topology::Session again = g.session();
+  ASSERT_EQ(again.area_graph.size(), s.area_graph.size());
+  for (size_t k = 0; k < s.area_graph.size(); ++k) {
+    EXPECT_EQ(again.area_graph[k].pose.x, s.area_graph[k].pose.x);
+    EXPECT_EQ(again.area_graph[k].pose.y, s.area_graph[k].pose.y);
+    EXPECT_EQ(again.area_graph[k].pose.theta, s.area_graph[k].pose.theta);
+    EXPECT_EQ(again.area_graph[k].scan.timestamp, s.area_graph[k].scan.timestamp);
+    EXPECT_EQ(again.area_graph[k].scan.ranges, s.area_graph[k].scan.ranges);
+  }
+  // Its keyframes come before the resumed paths: the next new-area event
+  // seeds its map from, and observes with, keyframes taken since the resume
+  // only, so the graph's older ones cannot index a path out of range.
+  const auto run = testing_ring::ring_run(7);
+  for (size_t i = s.steps; i < run.log.steps.size(); ++i) g.process(run.log.steps[i]);
+  EXPECT_GT(g.stats().new_area_events, 0u);
+}
+
 TEST(HybridFilter, AcceptsTheClosuresThatHypothesesOfEnoughProbabilityShare) {
   topology::Session s = saved_after(testing_ring::ring_run(7), 60);
   const topology::SessionHypothesis h = s.hypotheses[0];

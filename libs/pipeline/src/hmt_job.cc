@@ -243,7 +243,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, InputSteps& steps, const LogOpe
   for (const auto& t : system.traces()) peak_map_bytes = std::max(peak_map_bytes, t.map_memory_bytes);
 
   // What the processes did, and the state to resume from.
-  topology::save_session(out_dir + "/hmt_map.bin", filter.session());
+  topology::save_session(out_dir + "/hmt_map.bin", system.session());
   write_pmf_csv(out_dir + "/topological_pmf.csv", system.traces());
   write_ess_csv(out_dir + "/ess.csv", system.traces());
   write_memory_csv(out_dir + "/memory.csv", system.traces());

@@ -763,6 +763,14 @@ std::string encode_session(const Session& session) {
     }
     w.spill();
   }
+  w.count(session.area_graph.size(), "area graph keyframes");
+  for (const Keyframe& k : session.area_graph) {
+    if (k.scan.valid.size() != k.scan.ranges.size())
+      throw std::invalid_argument(
+          "encode_session: a keyframe's scan has different numbers of ranges and validity flags");
+    w.pose(k.pose);
+    write_scan(w, k.scan);
+  }
   w.flush();
   return wrap(kSessionMagic, kSessionFormatVersion, d);
 }
@@ -797,7 +805,15 @@ Session decode_session(const std::string& bytes, const std::string& origin) {
     if (version >= 3) h.pending_closures = read_closures(r, h);
     s.hypotheses.push_back(std::move(h));
   }
-  if (!r.at_end()) r.fail("unexpected data after the hypotheses");
+  if (version >= 4) {
+    s.area_graph.resize(r.count(24 + 8 + 12 + 24 + 4, "area graph keyframes"));
+    for (Keyframe& kf : s.area_graph) {
+      kf.pose = r.pose("area graph keyframe pose");
+      if (!finite(kf.pose)) r.fail("area graph: non-finite keyframe pose");
+      kf.scan = read_scan(r);
+    }
+  }
+  if (!r.at_end()) r.fail("unexpected data after the " + std::string(version >= 4 ? "area graph" : "hypotheses"));
   return s;
 }
 

@@ -188,6 +188,24 @@ void expect_same_grid(const grid::OccupancyGrid& a,
   EXPECT_EQ(cells, a.tile_count() * grid::kTileSize * grid::kTileSize);
 }
 
+void expect_same_keyframes(const std::vector<Keyframe>& a, const std::vector<Keyframe>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k) {
+    const LaserScan& sa = a[k].scan;
+    const LaserScan& sb = b[k].scan;
+    expect_same_pose(a[k].pose, b[k].pose);
+    EXPECT_EQ(bits(sa.timestamp), bits(sb.timestamp));
+    EXPECT_EQ(bits(sa.angle_min), bits(sb.angle_min));
+    EXPECT_EQ(bits(sa.angle_increment), bits(sb.angle_increment));
+    EXPECT_EQ(bits(sa.max_range), bits(sb.max_range));
+    expect_same_pose(sa.sensor_pose, sb.sensor_pose);
+    ASSERT_EQ(sa.ranges.size(), sb.ranges.size());
+    for (size_t i = 0; i < sa.ranges.size(); ++i)
+      EXPECT_EQ(bits(sa.ranges[i]), bits(sb.ranges[i]));
+    EXPECT_EQ(sa.valid, sb.valid);
+  }
+}
+
 void expect_same(const TopologySnapshot& got, const Fixture& want) {
   ASSERT_EQ(got.map.area_ids(), want.map.area_ids());
   for (AreaId id : want.map.area_ids()) {
@@ -199,21 +217,7 @@ void expect_same(const TopologySnapshot& got, const Fixture& want) {
     expect_same_pose(a.frame.origin_in_parent, b.frame.origin_in_parent);
     EXPECT_EQ(a.frame.created_step, b.frame.created_step);
     EXPECT_EQ(bits(a.frame.created_time), bits(b.frame.created_time));
-    ASSERT_EQ(a.keyframes.size(), b.keyframes.size());
-    for (size_t k = 0; k < a.keyframes.size(); ++k) {
-      const LaserScan& sa = a.keyframes[k].scan;
-      const LaserScan& sb = b.keyframes[k].scan;
-      expect_same_pose(a.keyframes[k].pose, b.keyframes[k].pose);
-      EXPECT_EQ(bits(sa.timestamp), bits(sb.timestamp));
-      EXPECT_EQ(bits(sa.angle_min), bits(sb.angle_min));
-      EXPECT_EQ(bits(sa.angle_increment), bits(sb.angle_increment));
-      EXPECT_EQ(bits(sa.max_range), bits(sb.max_range));
-      expect_same_pose(sa.sensor_pose, sb.sensor_pose);
-      ASSERT_EQ(sa.ranges.size(), sb.ranges.size());
-      for (size_t i = 0; i < sa.ranges.size(); ++i)
-        EXPECT_EQ(bits(sa.ranges[i]), bits(sb.ranges[i]));
-      EXPECT_EQ(sa.valid, sb.valid);
-    }
+    expect_same_keyframes(a.keyframes, b.keyframes);
     ASSERT_EQ(a.map != nullptr, b.map != nullptr);
     if (a.map) expect_same_grid(*a.map, *b.map);
   }
@@ -581,6 +585,9 @@ Session sample_session() {
   c2.arc_before = *f.map.find_arc(0, 1);
   b.pending_closures = {c1, c2};
   s.hypotheses = {a, b};
+  // The area abstraction's graph.
+  Random rng(7);
+  s.area_graph = {random_keyframe(rng, 181), random_keyframe(rng, 361)};
   return s;
 }
 
@@ -624,6 +631,7 @@ TEST(SessionFile, RoundTripRestoresEveryHypothesisExactly) {
     }
   }
   EXPECT_EQ(got.hypotheses[1].pending_closures.size(), 2u);
+  expect_same_keyframes(got.area_graph, s.area_graph);
   EXPECT_EQ(encode_session(got), read_bytes(path));
 }
 
@@ -708,16 +716,30 @@ TEST(SessionFile, BadFilesAreInputErrorsNamingTheProblem) {
   expect_session_error(encode_session(no_map), "current area has no map");
 }
 
-TEST(SessionFile, ReadsVersionTwoFilesWithoutClosures) {
+TEST(SessionFile, ReadsEarlierVersionsWithoutClosuresOrGraph) {
   const std::string p = minimal_session_payload();
   const Session v2 = decode_session(wrap(p, kSessionMagic, 2), "v2.bin");
   ASSERT_EQ(v2.hypotheses.size(), 1u);
   EXPECT_TRUE(v2.hypotheses[0].pending_closures.empty());
+  EXPECT_TRUE(v2.area_graph.empty());
   // The same payload is short of its closure count in version 3...
   expect_session_error(wrap(p, kSessionMagic, 3), "payload ends inside pending closures");
+  // ... which, given (no closures), makes a version 3 file without a graph;
+  std::string p3 = p;
+  put_u32(p3, 0);
+  const Session v3 = decode_session(wrap(p3, kSessionMagic, 3), "v3.bin");
+  EXPECT_TRUE(v3.area_graph.empty());
+  // version 4 needs the graph's count too...
+  expect_session_error(wrap(p3, kSessionMagic, 4), "payload ends inside area graph keyframes");
   // ... and a version this build does not know is refused, naming both.
-  expect_session_error(wrap(p + std::string(4, '\0'), kSessionMagic, 4),
-                       "format version 4; this build reads version 2 to 3");
+  expect_session_error(wrap(p3 + std::string(4, '\0'), kSessionMagic, 5),
+                       "format version 5; this build reads version 2 to 4");
+}
+
+TEST(SessionFile, BadAreaGraphIsAnInputError) {
+  Session s = sample_session();
+  s.area_graph[1].pose.y = std::nan("");
+  expect_session_error(encode_session(s), "area graph: non-finite keyframe pose");
 }
 
 TEST(SessionFile, BadPendingClosuresAreInputErrorsNamingThem) {
@@ -740,6 +762,7 @@ TEST(SessionFile, BadPendingClosuresAreInputErrorsNamingThem) {
         for (int c = 0; c < 3; ++c) put_f64(p, r == c ? 0.01 : 0.0);
       put_u32(p, 1);
     }
+    put_u32(p, 0);  // no area graph keyframes
     return wrap(p, kSessionMagic, kSessionFormatVersion);
   };
   const Session ok = decode_session(with_closure(1, 0, 0.01, 1, 0, 1), "ok.bin");

@@ -112,6 +112,9 @@ class HmtSystem {
 
   // After finish() only.
   const hybrid::HybridFilter& filter() const { return filter_; }
+  // The state to continue from (hmt_map.bin), with the area abstraction's
+  // graph; after finish().
+  topology::Session session() const { return filter_.session(partitioner_); }
   const std::vector<StepTrace>& traces() const { return traces_; }
   const ProcessTimes& times() const { return times_; }
 

@@ -164,14 +164,19 @@ class HybridFilter {
   // The state to continue from (hmt_map.bin): every hypothesis's map with
   // its current area archived from its best particle, its path and log
   // probability, and where its best particle is.
-  topology::Session session() const;
+  // `partitioner`: the area abstraction that ran beside this filter (its
+  // graph is saved too); process() uses the filter's own.
+  topology::Session session(const area::OnlinePartitioner& partitioner) const;
+  topology::Session session() const { return session(aam_); }
   // Continues a saved run; call before the first step. Each hypothesis's
   // particles restart at its saved robot pose in its current area's map;
-  // steps are numbered on from the saved run's; the area abstraction starts
-  // a fresh keyframe graph; closures not yet accepted when the run was
+  // steps are numbered on from the saved run's; the area abstraction's
+  // graph is the saved one (the same keyframes, so the same weights);
+  // closures not yet accepted when the run was
   // saved are fine-aligned when their hypothesis is accepted, as they would
   // have been without the stop.
-  void resume(const topology::Session& session);
+  void resume(const topology::Session& session, area::OnlinePartitioner& partitioner);
+  void resume(const topology::Session& session) { resume(session, aam_); }
 
   const std::vector<Hypothesis>& hypotheses() const { return hyps_; }
   // Normalised probabilities, in the order of hypotheses().
@@ -210,6 +215,7 @@ class HybridFilter {
     // Shared, so a snapshot (EventInput) keeps the scans it points to
     // alive and in place while this table grows.
     std::shared_ptr<const LaserScan> scan;
+    Pose2D pose;  // in the AAM frame, as the partitioner has it
   };
   void start(const LogStep& step);
   std::optional<area::Keyframe> keyframe_due(const LogStep& step);

@@ -83,7 +83,7 @@ TopologySnapshot load_topology(const std::string& path);
 // The HMT map file of a run (hmt_map.bin): every live hypothesis with its
 // own map and path, and what is needed to continue the run from where it
 // stopped (hmt-slam resume). Same header layout as above, with magic
-// "HMTSESS\x1a" and its own version; payload (version 3):
+// "HMTSESS\x1a" and its own version; payload (version 4):
 //   u64 steps processed; f64 timestamp of the last one;
 //   u32 map count, then each distinct area map once, as a map is stored
 //     above (f64 resolution; u32 tile count; tiles): hypotheses share the
@@ -99,13 +99,17 @@ TopologySnapshot load_topology(const std::string& path);
 //     replaced by a u32 index into the map table (0xffffffff: no map);
 //     then its loop closures not yet accepted: u32 count, per closure
 //     u32 from, to; u64 step; f64 x, y, theta, cov[9] of the measurement;
-//     u8 has_arc_before, and if 1 that arc as stored above.
-// Version 2 files (the same without the closures) are read too, with no
-// pending closures. Every part is checked as a topology file is, each
+//     u8 has_arc_before, and if 1 that arc as stored above;
+//   u32 count, then the area abstraction's graph (the keyframes it holds
+//     when the run stops, oldest first), each as an area's keyframe
+//     (pose in the area abstraction's frame, scan).
+// Version 2 files (without the closures and the graph) and version 3
+// files (without the graph) are read too: no pending closures, an empty
+// graph. Every part is checked as a topology file is, each
 // hypothesis's current area must have a map, and a closure must join two
 // distinct areas of its hypothesis's map. Files are deflated as they are
 // encoded, so writing one holds the compressed file, not the whole payload.
-constexpr uint32_t kSessionFormatVersion = 3;
+constexpr uint32_t kSessionFormatVersion = 4;
 constexpr uint32_t kOldestSessionFormatVersion = 2;
 inline constexpr char kSessionMagic[8] = {'H', 'M', 'T', 'S', 'E', 'S', 'S', '\x1a'};
 
@@ -122,6 +126,8 @@ struct Session {
   uint64_t steps = 0;
   double time = 0.0;
   std::vector<SessionHypothesis> hypotheses;
+  // The area abstraction's keyframe graph (its window), poses in its frame.
+  std::vector<Keyframe> area_graph;
 };
 
 std::string encode_session(const Session& session);
