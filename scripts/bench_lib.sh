@@ -178,18 +178,18 @@ bench_relation_cell() {
     '"%.3f ± %.3f m, %.2f° (%d)" % (r["trans_mean_m"], r["trans_std_m"], r["rot_mean_deg"], r["count"])' "$1" "$2"
 }
 
-# bench_ate_cell TRAJ REFERENCE: "0.097 (0.36)" (RMSE and max, metres) from
-# scripts/ate.py, or "FAIL (...)".
+# bench_ate_cell TRAJ REFERENCE [ate.py options]: "0.097 (0.36)" (RMSE and
+# max, metres) from scripts/ate.py, or "FAIL (...)".
 bench_ate_cell() {
-  bench_json_cell ate.py '"%.3f (%.2f)" % (r["rmse_m"], r["max_m"])' "$1" "$2"
+  bench_json_cell ate.py '"%.3f (%.2f)" % (r["rmse_m"], r["max_m"])' "$@"
 }
 
-# bench_sharpness_cell LOG TRAJ REFERENCE: "0.948", the scan end-point
+# bench_sharpness_cell LOG TRAJ REFERENCE [options]: "0.948", the scan end-point
 # cells TRAJ draws the log with over those REFERENCE draws it with
 # (scripts/map_sharpness.py; below 1: TRAJ's map is the sharper), or
 # "FAIL (...)".
 bench_sharpness_cell() {
-  bench_json_cell map_sharpness.py '"%.3f" % r["ratio"]' "$1" "$2" "$3"
+  bench_json_cell map_sharpness.py '"%.3f" % r["ratio"]' "$@"
 }
 
 # bench_machine: one line describing the machine.

@@ -289,11 +289,19 @@ for name in $LOGS; do
   ref=$DATASETS/carmen/$name.reference.txt.gz
   if [[ -r $ref ]]; then
     [[ -n $OURS_TRAJ ]] && ours_ate=$(bench_ate_cell "$OURS_TRAJ" "$ref")
-    [[ -n $MRPT_TRAJ ]] && mrpt_ate=$(bench_ate_cell "$MRPT_TRAJ" "$ref")
+    # rbpf-slam skips the log's first scan (no odometry precedes it): its
+    # poses are scans 1.. of the log, matched by index from there, since
+    # some logs' timestamps (csail's, the corridor's: rounded to 10 s) tell
+    # no scan apart.
+    mrpt_offset=()
+    if [[ $OURS_SCANS =~ ^[0-9]+$ && $MRPT_SCANS =~ ^[0-9]+$ ]] && ((MRPT_SCANS == OURS_SCANS - 1)); then
+      mrpt_offset=(--offset 1)
+    fi
+    [[ -n $MRPT_TRAJ ]] && mrpt_ate=$(bench_ate_cell "$MRPT_TRAJ" "$ref" "${mrpt_offset[@]}")
     carmen=$DATASETS/carmen/$name.log.gz
     if [[ -r $carmen ]]; then
       [[ -n $OURS_TRAJ ]] && ours_cells=$(bench_sharpness_cell "$carmen" "$OURS_TRAJ" "$ref")
-      [[ -n $MRPT_TRAJ ]] && mrpt_cells=$(bench_sharpness_cell "$carmen" "$MRPT_TRAJ" "$ref")
+      [[ -n $MRPT_TRAJ ]] && mrpt_cells=$(bench_sharpness_cell "$carmen" "$MRPT_TRAJ" "$ref" "${mrpt_offset[@]}")
     fi
   fi
   # Keep the trajectories next to the table.

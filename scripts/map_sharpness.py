@@ -20,6 +20,7 @@ few centimetres.
 
 Usage: map_sharpness.py LOG TRAJECTORY [REFERENCE] [--json] [--cell M]
                         [--max-range M] [--blocks K] [--png OUT --window X,Y,H]
+                        [--offset K]
   LOG: a CARMEN log (.log or .log.gz; FLASER or ROBOTLASER1 lines), the
        one both trajectories were estimated from.
   TRAJECTORY, REFERENCE: TUM or "t x y theta" per line (gzip if .gz), one
@@ -31,6 +32,9 @@ Usage: map_sharpness.py LOG TRAJECTORY [REFERENCE] [--json] [--cell M]
   --png OUT --window X,Y,H: draws the cells within H metres of (X, Y) (the
        reference's frame) as OUT, a PNG of two panels: the trajectory's
        left, the reference's right, one pixel per cell.
+  --offset K: pose i of TRAJECTORY is scan K + i of the log, whatever the
+       timestamps (a tool that began at scan K: MRPT's rbpf-slam skips the
+       first scan, which no odometry precedes).
 Exit 4 on a malformed or empty file, or when fewer than half of the poses
 match a scan.
 """
@@ -100,12 +104,14 @@ def load_scans(path):
 
 def match_scans(poses, scans, path):
     """Scan index per pose: by index when the counts agree, else the scan
-    with the nearest timestamp within 0.01 s."""
+    with the nearest timestamp within 0.01 s (none if another scan's
+    timestamp lies within 0.02 s of it: ambiguous)."""
     if len(poses) == len(scans):
         return poses, np.arange(len(scans))
     ok, index = nearest_times(np.array([s[0] for s in scans]), poses[:, 0])
     if ok.sum() < max(len(poses), len(scans)) / 2:
-        fail(f"only {ok.sum()} of {len(poses)} poses of {path} match a scan of the log")
+        fail(f"only {ok.sum()} of {len(poses)} poses of {path} match a scan of the log "
+             f"(by a timestamp within 0.01 s that no other scan shares)")
     return poses[ok], index[ok]
 
 
@@ -146,7 +152,8 @@ def draw_pair(drawn, cell, window, path):
 
 
 def main(argv):
-    opts = {"--cell": 0.05, "--max-range": 20.0, "--blocks": 0, "--png": "", "--window": ""}
+    opts = {"--cell": 0.05, "--max-range": 20.0, "--blocks": 0, "--png": "", "--window": "",
+            "--offset": -1}
     args = []
     it = iter(argv[1:])
     for a in it:
@@ -164,6 +171,9 @@ def main(argv):
             window = [float(v) for v in opts["--window"].split(",")]
         except ValueError:
             window = []
+    if "--offset" in argv and opts["--offset"] < 0:
+        print("map_sharpness.py: --offset needs a scan count >= 0", file=sys.stderr)
+        return 2
     if (len(args) not in (2, 3) or opts["--cell"] <= 0 or opts["--max-range"] <= 0
             or bool(opts["--png"]) != (window is not None)
             or (window is not None and (len(window) != 3 or not window[2] > 0 or len(args) != 3))):
@@ -172,8 +182,13 @@ def main(argv):
     try:
         scans = load_scans(args[0])
         runs = []
-        for path in args[1:]:
-            poses, index = match_scans(load_poses(path), scans, path)
+        for k, path in enumerate(args[1:]):
+            poses = load_poses(path)
+            if k == 0 and opts["--offset"] >= 0:
+                index = np.arange(len(poses)) + opts["--offset"]
+                poses, index = poses[index < len(scans)], index[index < len(scans)]
+            else:
+                poses, index = match_scans(poses, scans, path)
             runs.append((path, poses, index))
     except SystemExit as e:
         print(e, file=sys.stderr)

@@ -122,6 +122,59 @@ class MapSharpness(unittest.TestCase):
         self.assertEqual(r.returncode, 4)
         self.assertIn("match a scan", r.stderr)
 
+    def test_a_timestamp_several_scans_share_matches_none(self):
+        # Nine of the ten poses (one dropped, so matched by time), the log's
+        # timestamps rounded so that scans 4-9 share one: those poses could
+        # be any of six scans, and only scans 0-3 are left, under half.
+        rounded = f"{self.dir.name}/rounded.log"
+        with open(rounded, "w") as f, gzip.open(self.log, "rt") as g:
+            for line in g:
+                s = line.split()
+                if s[0] == "FLASER" and float(s[-1]) >= 104:
+                    s[-1] = s[-3] = "104"
+                f.write(" ".join(s) + "\n")
+        nine = f"{self.dir.name}/nine.txt"
+        with open(nine, "w") as f:
+            f.writelines(f"{min(t, 104)} {x} {y} {th}\n" for t, x, y, th in self.truth[1:])
+        r = run(rounded, nine)
+        self.assertEqual(r.returncode, 4)
+        self.assertIn("no other scan shares", r.stderr)
+        # Matched by index from scan 1 instead, they draw the wall once.
+        r = run(rounded, nine, "--offset", "1", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(json.loads(r.stdout)["trajectory_poses"], 9)
+        self.assertEqual(run(rounded, nine, "--offset", "x").returncode, 2)
+
+    def test_ate_offset_and_ambiguous_times(self):
+        ate = os.path.join(HERE, "..", "ate.py")
+        # A curve (a shift along it is no rigid motion), the estimate moved
+        # by 1 m and without its first pose.
+        curve = [(100.0 + k, float(k), 0.1 * k * k, 0.0) for k in range(10)]
+        ref, nine = f"{self.dir.name}/curve.txt", f"{self.dir.name}/nine.txt"
+        with open(ref, "w") as f:
+            f.writelines(f"{t} {x} {y} {th}\n" for t, x, y, th in curve)
+        with open(nine, "w") as f:
+            f.writelines(f"{t} {x + 1} {y} {th}\n" for t, x, y, th in curve[1:])
+        def ate_run(*args):
+            return subprocess.run([sys.executable, ate, *args, "--json"], capture_output=True,
+                                  text=True)
+        # By time and by index from pose 1 alike: the same poses, shifted.
+        for extra in ([], ["--offset", "1"]):
+            r = ate_run(nine, ref, *extra)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertEqual(json.loads(r.stdout)["count"], 9)
+            self.assertLess(json.loads(r.stdout)["rmse_m"], 1e-9)
+        # From pose 0 instead, every pose is one scan off along the curve.
+        r = ate_run(nine, ref, "--offset", "0")
+        self.assertGreater(json.loads(r.stdout)["rmse_m"], 0.01)
+        # A reference whose times all coincide matches nothing by time.
+        same = f"{self.dir.name}/same.txt"
+        with open(same, "w") as f:
+            f.writelines(f"100 {x} {y} {th}\n" for t, x, y, th in curve)
+        r = ate_run(nine, same)
+        self.assertEqual(r.returncode, 4)
+        self.assertIn("no other pose of the reference shares", r.stderr)
+
     def test_a_malformed_heading_is_an_error(self):
         tum = f"{self.dir.name}/bad.tum"
         with open(tum, "w") as f:
