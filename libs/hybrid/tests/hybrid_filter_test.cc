@@ -156,10 +156,6 @@ TEST(HybridFilter, ResumedRunStillAlignsTheClosuresMadeBeforeTheSave) {
   EXPECT_TRUE(f.hypotheses()[0].pending_closures.empty());
 }
 
-// No hypothesis dominates, but the closure the most probable one made first
-// is held by hypotheses of 0.995 in all (descendants of the one that made
-// it): that closure is accepted and fused into every survivor's arcs, the
-// hypothesis without it dropped, and the closures made since stay pending.
 // A resumed run's area abstraction holds the graph it held when the run was
 // saved: started empty, it would cut the current area later than the
 // uninterrupted run (and every event after, loop closures included).
@@ -185,6 +181,10 @@ TEST(HybridFilter, ResumeRestoresTheAreaAbstractionsGraph) {
   EXPECT_GT(g.stats().new_area_events, 0u);
 }
 
+// No hypothesis dominates, but the closure the most probable one made first
+// is held by hypotheses of 0.995 in all (descendants of the one that made
+// it): that closure is accepted and fused into every survivor's arcs, the
+// hypothesis without it dropped, and the closures made since stay pending.
 TEST(HybridFilter, AcceptsTheClosuresThatHypothesesOfEnoughProbabilityShare) {
   topology::Session s = saved_after(testing_ring::ring_run(7), 60);
   const topology::SessionHypothesis h = s.hypotheses[0];

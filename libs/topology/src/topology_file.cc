@@ -204,6 +204,21 @@ void write_scan(Writer& w, const LaserScan& s) {
   for (uint8_t v : s.valid) w.u8(v);
 }
 
+// A keyframe list (an area's, the area abstraction's graph): u32 count
+// (`list` names it in errors), then each keyframe's pose and scan.
+void write_keyframes(Writer& w, const std::vector<Keyframe>& keyframes, const char* list,
+                     const char* caller) {
+  w.count(keyframes.size(), list);
+  for (const Keyframe& k : keyframes) {
+    if (k.scan.valid.size() != k.scan.ranges.size())
+      throw std::invalid_argument(std::string(caller) +
+                                  ": a keyframe's scan has different numbers of "
+                                  "ranges and validity flags");
+    w.pose(k.pose);
+    write_scan(w, k.scan);
+  }
+}
+
 // Grids written once in a table (a session's hypotheses share most area
 // maps): the index of each, in the order written.
 using GridTable = std::map<const grid::OccupancyGrid*, uint32_t>;
@@ -237,15 +252,7 @@ void encode_payload(Writer& w, const HmtMap& map,
     w.pose(a.frame.origin_in_parent);
     w.u64(a.frame.created_step);
     w.f64(a.frame.created_time);
-    w.count(a.keyframes.size(), "keyframes");
-    for (const Keyframe& k : a.keyframes) {
-      if (k.scan.valid.size() != k.scan.ranges.size())
-        throw std::invalid_argument(
-            "encode_topology: a keyframe's scan has different numbers of "
-            "ranges and validity flags");
-      w.pose(k.pose);
-      write_scan(w, k.scan);
-    }
+    write_keyframes(w, a.keyframes, "keyframes", "encode_topology");
     if (grids) {
       w.u32(a.map ? grids->at(a.map.get()) : kNoGrid);
     } else {
@@ -413,6 +420,18 @@ LaserScan read_scan(Reader& r) {
   return s;
 }
 
+// A list written by write_keyframes; `owner` ("area 3", "area graph")
+// names it in errors.
+std::vector<Keyframe> read_keyframes(Reader& r, const char* list, const std::string& owner) {
+  std::vector<Keyframe> out(r.count(24 + 8 + 12 + 24 + 4, list));
+  for (Keyframe& kf : out) {
+    kf.pose = r.pose("keyframe pose");
+    if (!finite(kf.pose)) r.fail(owner + ": non-finite keyframe pose");
+    kf.scan = read_scan(r);
+  }
+  return out;
+}
+
 // Reads a payload written by encode_payload (with the same grid table, if
 // any) from r's position; the caller checks what follows.
 PoseGaussian read_gaussian(Reader& r, const char* what) {
@@ -472,16 +491,7 @@ TopologySnapshot decode_payload(
       r.fail("area " + std::to_string(id) + ": non-finite frame origin");
     frames.emplace_back(id, f);
     Pending p;
-    const size_t keyframes = r.count(24 + 8 + 12 + 24 + 4, "keyframes");
-    p.keyframes.reserve(keyframes);
-    for (size_t k = 0; k < keyframes; ++k) {
-      Keyframe kf;
-      kf.pose = r.pose("keyframe pose");
-      if (!finite(kf.pose))
-        r.fail("area " + std::to_string(id) + ": non-finite keyframe pose");
-      kf.scan = read_scan(r);
-      p.keyframes.push_back(std::move(kf));
-    }
+    p.keyframes = read_keyframes(r, "keyframes", "area " + std::to_string(id));
     if (grids) {
       const uint32_t g = r.u32("map index");
       if (g != kNoGrid && g >= grids->size())
@@ -763,14 +773,7 @@ std::string encode_session(const Session& session) {
     }
     w.spill();
   }
-  w.count(session.area_graph.size(), "area graph keyframes");
-  for (const Keyframe& k : session.area_graph) {
-    if (k.scan.valid.size() != k.scan.ranges.size())
-      throw std::invalid_argument(
-          "encode_session: a keyframe's scan has different numbers of ranges and validity flags");
-    w.pose(k.pose);
-    write_scan(w, k.scan);
-  }
+  write_keyframes(w, session.area_graph, "area graph keyframes", "encode_session");
   w.flush();
   return wrap(kSessionMagic, kSessionFormatVersion, d);
 }
@@ -805,14 +808,7 @@ Session decode_session(const std::string& bytes, const std::string& origin) {
     if (version >= 3) h.pending_closures = read_closures(r, h);
     s.hypotheses.push_back(std::move(h));
   }
-  if (version >= 4) {
-    s.area_graph.resize(r.count(24 + 8 + 12 + 24 + 4, "area graph keyframes"));
-    for (Keyframe& kf : s.area_graph) {
-      kf.pose = r.pose("area graph keyframe pose");
-      if (!finite(kf.pose)) r.fail("area graph: non-finite keyframe pose");
-      kf.scan = read_scan(r);
-    }
-  }
+  if (version >= 4) s.area_graph = read_keyframes(r, "area graph keyframes", "area graph");
   if (!r.at_end()) r.fail("unexpected data after the " + std::string(version >= 4 ? "area graph" : "hypotheses"));
   return s;
 }
