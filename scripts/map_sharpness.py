@@ -115,6 +115,18 @@ def match_scans(poses, scans, path):
     return poses[ok], index[ok]
 
 
+def offset_scans(poses, scans, offset, path):
+    """Scan index per pose by `--offset`: pose i is scan offset + i; the poses
+    past the log's last scan are dropped, and, as when matching by time,
+    fewer than half of the poses left is an error."""
+    index = np.arange(len(poses)) + offset
+    ok = index < len(scans)
+    if ok.sum() < max(len(poses), len(scans)) / 2:
+        fail(f"only {ok.sum()} of {len(poses)} poses of {path} fall on a scan of the log "
+             f"from scan {offset} on (the log has {len(scans)} scans)")
+    return poses[ok], index[ok]
+
+
 def end_point_cells(poses, index, scans, cell, max_range, transform=None):
     cells = set()
     for (t, x, y, th), k in zip(poses, index):
@@ -185,8 +197,7 @@ def main(argv):
         for k, path in enumerate(args[1:]):
             poses = load_poses(path)
             if k == 0 and opts["--offset"] >= 0:
-                index = np.arange(len(poses)) + opts["--offset"]
-                poses, index = poses[index < len(scans)], index[index < len(scans)]
+                poses, index = offset_scans(poses, scans, opts["--offset"], path)
             else:
                 poses, index = match_scans(poses, scans, path)
             runs.append((path, poses, index))

@@ -144,6 +144,11 @@ class MapSharpness(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(json.loads(r.stdout)["trajectory_poses"], 9)
         self.assertEqual(run(rounded, nine, "--offset", "x").returncode, 2)
+        # From scan 6, only four of the nine poses fall on the log's ten
+        # scans: under half, refused as matching by time is.
+        r = run(rounded, nine, "--offset", "6")
+        self.assertEqual(r.returncode, 4)
+        self.assertIn("only 4 of 9 poses", r.stderr)
 
     def test_ate_offset_and_ambiguous_times(self):
         ate = os.path.join(HERE, "..", "ate.py")
