@@ -5,24 +5,12 @@ Run directly or through ctest (drift_script).
 """
 import json
 import math
-import os
-import subprocess
-import sys
 import tempfile
 import unittest
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SCRIPT = os.path.join(HERE, "..", "drift.py")
+from script_test_util import runner, write_rows
 
-
-def write(path, rows):
-    with open(path, "w") as f:
-        for r in rows:
-            f.write(" ".join(f"{v:.9f}" for v in r) + "\n")
-
-
-def run(*args):
-    return subprocess.run([sys.executable, SCRIPT, *args], capture_output=True, text=True)
+run = runner("drift.py")
 
 
 class Drift(unittest.TestCase):
@@ -35,8 +23,8 @@ class Drift(unittest.TestCase):
         ref = [(float(i), float(i), 0.0, 0.0) for i in range(200)]
         est = self.walk(self.k)
         self.ref, self.est = f"{d}/ref.txt", f"{d}/est.txt"
-        write(self.ref, ref)
-        write(self.est, est)
+        write_rows(self.ref, ref, 9)
+        write_rows(self.est, est, 9)
 
     @staticmethod
     def walk(k):
@@ -68,7 +56,7 @@ class Drift(unittest.TestCase):
             self.assertLessEqual(b["heading_p95_rad"], self.k * b["to_m"])
             self.assertAlmostEqual(b["position_rms_m"] / (self.k * d * (d - 1) / 2), 1.0, delta=0.1)
         # And ten times the drift reads ten times the error.
-        write(self.est, self.walk(10 * self.k))
+        write_rows(self.est, self.walk(10 * self.k), 9)
         rows10 = json.loads(run(self.est, self.ref, "--json").stdout)
         self.assertAlmostEqual(rows10[3]["heading_rms_rad"] / rows[3]["heading_rms_rad"], 10.0,
                                delta=1e-6)

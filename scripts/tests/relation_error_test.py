@@ -6,23 +6,12 @@ Run directly or through ctest (relation_error_script).
 import gzip
 import os
 import shutil
-import subprocess
-import sys
 import tempfile
 import unittest
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SCRIPT = os.path.join(HERE, "..", "relation_error.py")
+from script_test_util import runner, write_rows
 
-
-def write(path, rows):
-    with open(path, "w") as f:
-        for r in rows:
-            f.write(" ".join(f"{v:.6f}" for v in r) + "\n")
-
-
-def run(*args):
-    return subprocess.run([sys.executable, SCRIPT, *args], capture_output=True, text=True)
+run = runner("relation_error.py")
 
 
 class RelationError(unittest.TestCase):
@@ -38,12 +27,12 @@ class RelationError(unittest.TestCase):
         other = [list(p) for p in self.truth]
         other[3][2] = 0.32
         self.est, self.other = f"{d}/est.txt", f"{d}/other.txt"
-        write(self.est, est)
-        write(self.other, other)
+        write_rows(self.est, est)
+        write_rows(self.other, other)
         # Relations (t1 t2 x y z roll pitch yaw): 0-1, 1-2 (exact), 2-3
         # (the slip), and one whose two ends match one pose (skipped).
         self.rel = f"{d}/rel.txt"
-        write(self.rel, [(10, 11, 1, 0, 0, 0, 0, 0), (11, 12, 1, 0, 0, 0, 0, 0),
+        write_rows(self.rel, [(10, 11, 1, 0, 0, 0, 0, 0), (11, 12, 1, 0, 0, 0, 0, 0),
                          (12, 13, 1, 0, 0, 0, 0, 0), (12.001, 12.002, 0.3, 0, 0, 0, 0, 0)])
 
     def tearDown(self):
