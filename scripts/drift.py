@@ -16,7 +16,6 @@ Poses are matched by index (one line per scan in both files; TUM or
 empty file or when the two differ in length.
 """
 import json
-import math
 import os
 import sys
 
@@ -24,16 +23,9 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from ate import load_poses  # noqa: E402
+from relation_error import errors, relative  # noqa: E402
 
 BINS = [(2, 5), (5, 10), (10, 20), (20, 40), (40, 80), (80, 160)]
-
-
-def relative(p, i, j):
-    """Pose j in pose i's frame: (x, y, theta)."""
-    c, s = math.cos(p[i, 3]), math.sin(p[i, 3])
-    dx, dy = p[j, 1] - p[i, 1], p[j, 2] - p[i, 2]
-    dth = p[j, 3] - p[i, 3]
-    return c * dx + s * dy, -s * dx + c * dy, math.atan2(math.sin(dth), math.cos(dth))
 
 
 def drift(est, ref, stride=3):
@@ -47,10 +39,11 @@ def drift(est, ref, stride=3):
             if len(js) == 0:
                 continue
             j = js[len(js) // 2]  # the bin's middle, not its first pose
-            ex, ey, eth = relative(est, i, j)
-            rx, ry, rth = relative(ref, i, j)
-            th.append(abs(math.atan2(math.sin(eth - rth), math.cos(eth - rth))))
-            xy.append(math.hypot(ex - rx, ey - ry))
+            # The same error as a ground-truth relation's (relation_error.py).
+            e_xy, e_th = errors(relative(ref[i, 1:], ref[j, 1:]),
+                                relative(est[i, 1:], est[j, 1:]))
+            xy.append(e_xy)
+            th.append(e_th)
             dist.append(along[j] - along[i])
         row = {"from_m": lo, "to_m": hi, "pairs": len(th)}
         if th:

@@ -47,9 +47,9 @@ class Drift(unittest.TestCase):
         for b in rows:
             self.assertGreater(b["pairs"], 0)
             # A pair d metres (steps) apart is K d off in heading, and the
-            # walk bends its end sideways by about K d (d - 1) / 2. Near the log's end a bin
-            # holds shorter pairs than elsewhere, so d varies a little
-            # within it: 10 % of slack.
+            # walk bends its end sideways by about K d (d - 1) / 2. Near the
+            # log's end a bin holds shorter pairs than elsewhere, so d varies
+            # a little within it: 10 % of slack.
             d = b["mean_distance_m"]
             self.assertTrue(b["from_m"] <= d < b["to_m"])
             self.assertAlmostEqual(b["heading_rms_rad"] / (self.k * d), 1.0, delta=0.1)

@@ -33,7 +33,7 @@ class RelationError(unittest.TestCase):
         # (the slip), and one whose two ends match one pose (skipped).
         self.rel = f"{d}/rel.txt"
         write_rows(self.rel, [(10, 11, 1, 0, 0, 0, 0, 0), (11, 12, 1, 0, 0, 0, 0, 0),
-                         (12, 13, 1, 0, 0, 0, 0, 0), (12.001, 12.002, 0.3, 0, 0, 0, 0, 0)])
+                              (12, 13, 1, 0, 0, 0, 0, 0), (12.001, 12.002, 0.3, 0, 0, 0, 0, 0)])
 
     def tearDown(self):
         self.dir.cleanup()
