@@ -112,8 +112,18 @@ std::optional<area::Keyframe> HybridFilter::keyframe_due(const LogStep& step) {
   last_keyframe_pose_ = pose;
   keyframes_.push_back({step_, std::make_shared<const LaserScan>(step.scan), pose});
   ++stats_.keyframes;
-  for (Hypothesis& hh : hyps_)
-    hh.map.add_keyframe(hh.current_area(), {hh.filter.best().path.back(), step.scan});
+  // An area keeps a keyframe only where it has none within the keyframe
+  // spacing (the rule above, applied against all of the area's keyframes
+  // rather than the last one): a robot driving through an area again sees
+  // what its keyframes from the first pass already hold, so the area's
+  // keyframes stop growing once it is covered, and so do the memory and
+  // TSBI's area check that reads them (the soak's later laps).
+  const double kd = opt_.hybrid.keyframe_distance, ka = opt_.hybrid.keyframe_angle;
+  for (Hypothesis& hh : hyps_) {
+    const Pose2D at = hh.filter.best().path.back();
+    if (!hh.map.has_keyframe_near(hh.current_area(), at, kd, ka))
+      hh.map.add_keyframe(hh.current_area(), {at, step.scan});
+  }
   area::Keyframe kf{area::PoseGaussian(pose), step.scan};
   const area::PlacementOptions& po = opt_.area.placement;
   if (po.policy != area::Placement::kSso) {

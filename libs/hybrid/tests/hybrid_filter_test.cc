@@ -46,6 +46,28 @@ TEST(HybridFilter, ClosesTheLoopByInference) {
   expect_ring_closed(f);
 }
 
+// The run ends driving again along area 1's first stretch: area 1 gets no
+// keyframe there that is within the keyframe spacing of one it holds, in
+// any hypothesis (nor does any other area).
+TEST(HybridFilter, AnAreaDrivenThroughAgainKeepsItsKeyframeSpacing) {
+  const auto run = testing_ring::ring_run(7);
+  const HmtOptions o = ring_options();
+  HybridFilter f(o);
+  for (const auto& st : run.log.steps) f.process(st);
+  expect_ring_closed(f);
+  for (const Hypothesis& h : f.hypotheses())
+    for (topology::AreaId id : h.map.area_ids()) {
+      const std::vector<topology::Keyframe>& kfs = h.map.area(id).keyframes;
+      for (size_t i = 0; i < kfs.size(); ++i)
+        for (size_t j = 0; j < i; ++j) {
+          const Pose2D d = kfs[i].pose - kfs[j].pose;
+          EXPECT_TRUE(d.norm() >= o.hybrid.keyframe_distance ||
+                      std::fabs(d.theta) >= o.hybrid.keyframe_angle)
+              << "area " << id << ": keyframes " << j << " and " << i;
+        }
+    }
+}
+
 TEST(HybridFilter, ClosesTheLoopWhenEventsWeighTheHypotheses) {
   const auto run = testing_ring::ring_run(7);
   HmtOptions o = ring_options();

@@ -81,6 +81,15 @@ void HmtMap::add_keyframe(AreaId id, Keyframe keyframe) {
   writable(id).keyframes.push_back(std::move(keyframe));
 }
 
+bool HmtMap::has_keyframe_near(AreaId id, const Pose2D& pose, double distance,
+                               double angle) const {
+  for (const Keyframe& k : area(id).keyframes)
+    if (std::hypot(pose.x - k.pose.x, pose.y - k.pose.y) < distance &&
+        std::fabs(wrap_angle(pose.theta - k.pose.theta)) < angle)
+      return true;
+  return false;
+}
+
 void HmtMap::archive_map(AreaId id, grid::OccupancyGrid map) {
   set_map(id, std::make_shared<const grid::OccupancyGrid>(std::move(map)));
 }

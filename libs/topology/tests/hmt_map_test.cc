@@ -159,6 +159,22 @@ TEST(HmtMap, CopiesShareAreasUntilOneIsChanged) {
   EXPECT_THROW(a.add_keyframe(1, kf), std::invalid_argument);
 }
 
+TEST(HmtMap, FindsAKeyframeNearAPoseWithinBothDistanceAndAngle) {
+  HmtMap m = three_areas();
+  Keyframe kf;
+  kf.pose = Pose2D(1, 2, 3.0);
+  kf.scan.ranges = {1.0f};
+  kf.scan.valid = {1};
+  m.add_keyframe(1, kf);
+  EXPECT_TRUE(m.has_keyframe_near(1, Pose2D(1.3, 2.3, 3.0), 0.5, 0.5));
+  EXPECT_FALSE(m.has_keyframe_near(1, Pose2D(1.3, 2.3, 3.0), 0.4, 0.5));  // 0.42 m away
+  // Headings compare across +-pi: 3.0 and -3.1 are 0.18 rad apart.
+  EXPECT_TRUE(m.has_keyframe_near(1, Pose2D(1, 2, -3.1), 0.5, 0.2));
+  EXPECT_FALSE(m.has_keyframe_near(1, Pose2D(1, 2, -3.1), 0.5, 0.15));
+  EXPECT_FALSE(m.has_keyframe_near(0, Pose2D(1, 2, 3.0), 0.5, 0.5));  // another area
+  EXPECT_THROW(m.has_keyframe_near(7, Pose2D(), 0.5, 0.5), std::out_of_range);
+}
+
 TEST(HmtMap, ArchivedMapIsASharedImmutableSnapshot) {
   HmtMap m = three_areas();
   grid::OccupancyGrid live(0.05);

@@ -9,7 +9,8 @@
 //  2. Area abstraction (AAM): every keyframe_distance / keyframe_angle of
 //     motion of the most probable hypothesis's best particle, the scan joins
 //     the keyframe graph (area::OnlinePartitioner); a good enough normalized
-//     cut says the robot entered a new area.
+//     cut says the robot entered a new area. Each hypothesis's current area
+//     stores the keyframe too, unless it holds one within that spacing.
 //  3. Topological inference (TSBI), on a new-area event, once per
 //     hypothesis: the transition model (tsbi::TransitionModel) gives eta for
 //     an unexplored area and F(gamma) for each known area; every outcome

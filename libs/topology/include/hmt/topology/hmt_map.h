@@ -123,6 +123,9 @@ class HmtMap {
   AreaId next_area_id() const;
 
   void add_keyframe(AreaId id, Keyframe keyframe);
+  // Whether area `id` holds a keyframe less than `distance` metres and
+  // `angle` radians from `pose` (both in the area's frame).
+  bool has_keyframe_near(AreaId id, const Pose2D& pose, double distance, double angle) const;
   // Archives the area's local map (replacing any earlier one). The grid is
   // taken by value: copying an OccupancyGrid copies its tile table, not its
   // tiles, and the snapshot then shares them.
