@@ -29,6 +29,12 @@ int OnlinePartitioner::add_keyframe(const Keyframe& keyframe) {
 std::vector<int> OnlinePartitioner::window() const { return window_; }
 
 AreaDecision OnlinePartitioner::update() {
+  AreaDecision d = decide();
+  d.oldest_in_window = window_.empty() ? next_id_ : window_.front();
+  return d;
+}
+
+AreaDecision OnlinePartitioner::decide() {
   AreaDecision d;
   const int n = static_cast<int>(window_.size());
   if (n < 2) return d;

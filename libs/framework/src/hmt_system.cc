@@ -1,5 +1,6 @@
 #include "hmt/framework/hmt_system.h"
 
+#include <algorithm>
 #include <chrono>
 #include <future>
 #include <memory>
@@ -192,16 +193,24 @@ void HmtSystem::poll_replies() {
 
 void HmtSystem::on_decision(const DecisionMsg& d) {
   --aam_outstanding_;
-  if (!d.decision.new_area) return;
-  // One evaluation at a time: the next needs the hypotheses this one makes.
-  // Behind it waits only the latest decision: the robot has crossed the
-  // areas of the earlier ones already, and entering each at consecutive
-  // steps would only make areas of a step or two.
-  if (event_in_flight_) {
-    waiting_decisions_.assign(1, d.decision);
-    return;
+  if (d.decision.new_area) {
+    // One evaluation at a time: the next needs the hypotheses this one
+    // makes. Behind it waits only the latest decision: the robot has
+    // crossed the areas of the earlier ones already, and entering each at
+    // consecutive steps would only make areas of a step or two.
+    if (event_in_flight_)
+      waiting_decisions_.assign(1, d.decision);
+    else
+      dispatch_event(d.decision);
   }
-  dispatch_event(d.decision);
+  // The scans older than the area abstraction's window go, except those
+  // of the decisions still to be applied (apply_event seeds new areas with
+  // them).
+  int keep = d.decision.oldest_in_window;
+  if (event_in_flight_) keep = std::min(keep, in_flight_oldest_keyframe_);
+  for (const area::AreaDecision& w : waiting_decisions_)
+    if (!w.new_area_keyframes.empty()) keep = std::min(keep, w.new_area_keyframes.front());
+  filter_.release_keyframe_scans_before(keep);
 }
 
 void HmtSystem::dispatch_event(const area::AreaDecision& decision) {
@@ -210,6 +219,8 @@ void HmtSystem::dispatch_event(const area::AreaDecision& decision) {
   e.decision = decision;
   e.inputs = filter_.prepare_event(decision);
   event_in_flight_ = true;
+  in_flight_oldest_keyframe_ =
+      decision.new_area_keyframes.empty() ? 0 : decision.new_area_keyframes.front();
   if (!tsbi_.post(std::move(e))) throw Error(ExitCode::kInternal, "topological inference stopped");
   if (framework_.mode == Mode::kDeterministic)
     on_event_result(wait_reply(event_results_, "topological inference"));

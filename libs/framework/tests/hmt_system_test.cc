@@ -100,6 +100,10 @@ TEST(HmtSystem, LiveModeNeverMakesMetricSlamWaitForTheTopology) {
   EXPECT_EQ(f.transitions().front().step, held_at.load());
   ASSERT_GE(f.hypotheses().size(), 1u);
   EXPECT_GE(f.best().map.area_count(), 3u);
+  // Scans were let go while an evaluation was out and decisions waited
+  // behind it (none the evaluation or the waiting decision still needed:
+  // apply_event would have read a freed scan).
+  EXPECT_LT(f.keyframe_scans_held(), f.stats().keyframes / 2);
 }
 
 TEST(HmtSystem, RtlAnswersWhileAStepIsRunning) {

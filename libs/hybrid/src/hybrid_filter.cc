@@ -70,6 +70,7 @@ void HybridFilter::process(const LogStep& step) {
       for (const EventInput& in : inputs) outcomes.push_back(evaluate(in));
       apply_event(decision, inputs, outcomes);
     }
+    release_keyframe_scans_before(decision.oldest_in_window);
   }
   if (const std::optional<AlignmentJob> job = accept_if_dominant())
     apply_alignment(*job, align(*job));
@@ -96,6 +97,19 @@ std::optional<area::Keyframe> HybridFilter::metric_step(const LogStep& step) {
     normalise_and_prune();
   }
   return keyframe_due(step);
+}
+
+void HybridFilter::release_keyframe_scans_before(int id) {
+  // Backwards until the first one already let go: each call frees only what
+  // the last left.
+  for (size_t k = std::min(static_cast<size_t>(std::max(id, 0)), keyframes_.size());
+       k-- > 0 && keyframes_[k].scan;)
+    keyframes_[k].scan.reset();
+}
+
+size_t HybridFilter::keyframe_scans_held() const {
+  return static_cast<size_t>(std::count_if(keyframes_.begin(), keyframes_.end(),
+                                           [](const KeyframeRecord& k) { return k.scan != nullptr; }));
 }
 
 std::optional<area::Keyframe> HybridFilter::keyframe_due(const LogStep& step) {

@@ -68,6 +68,21 @@ TEST(HybridFilter, AnAreaDrivenThroughAgainKeepsItsKeyframeSpacing) {
     }
 }
 
+// Only the area abstraction's window keeps its scans: after the ring's
+// events the keyframes of the areas left behind are let go, and the saved
+// state (which holds the window's scans) is still whole.
+TEST(HybridFilter, LetsGoOfTheScansTheAreaAbstractionNoLongerNeeds) {
+  const auto run = testing_ring::ring_run(7);
+  HybridFilter f(ring_options());
+  for (const auto& st : run.log.steps) f.process(st);
+  ASSERT_GE(f.stats().new_area_events, 3u);
+  EXPECT_GT(f.keyframe_scans_held(), 0u);
+  EXPECT_LT(f.keyframe_scans_held(), f.stats().keyframes / 2);
+  const topology::Session s = f.session();
+  EXPECT_GE(f.keyframe_scans_held(), s.area_graph.size());
+  for (const auto& kf : s.area_graph) EXPECT_FALSE(kf.scan.ranges.empty());
+}
+
 TEST(HybridFilter, ClosesTheLoopWhenEventsWeighTheHypotheses) {
   const auto run = testing_ring::ring_run(7);
   HmtOptions o = ring_options();

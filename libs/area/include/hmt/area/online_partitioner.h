@@ -73,6 +73,10 @@ struct AreaDecision {
   // forming the new area (N, which holds the newest keyframe). Both sorted.
   std::vector<int> stay;
   std::vector<int> new_area_keyframes;
+  // The oldest keyframe left in the window after this update: no later
+  // decision, nor window(), names an older one, so whoever holds the
+  // keyframes' scans by id may let the older ones go.
+  int oldest_in_window = 0;
 };
 
 class OnlinePartitioner {
@@ -99,6 +103,8 @@ class OnlinePartitioner {
   const AreaOptions& options() const { return options_; }
 
  private:
+  AreaDecision decide();
+
   AreaOptions options_;
   SsoGraph graph_;
   std::vector<int> area_;    // current area, ascending

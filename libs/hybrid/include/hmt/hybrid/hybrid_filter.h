@@ -157,6 +157,10 @@ class HybridFilter {
   // them into the arcs of every surviving hypothesis (all descend from the
   // accepted one).
   std::optional<AlignmentJob> accept_if_dominant();
+  // Frees the scans of the keyframes before `id` (an AreaDecision's
+  // oldest_in_window, or older): the area abstraction will not name them
+  // again, and a long run would otherwise hold every keyframe's scan.
+  void release_keyframe_scans_before(int id);
   std::vector<tlca::ClosureReport> align(const AlignmentJob& job) const;
   void apply_alignment(const AlignmentJob& job, const std::vector<tlca::ClosureReport>& reports);
 
@@ -190,6 +194,8 @@ class HybridFilter {
   const std::vector<TransitionEvent>& transitions() const { return transitions_; }
   const std::vector<AcceptanceEvent>& acceptances() const { return acceptances_; }
   const HybridStats& stats() const { return stats_; }
+  // Keyframe scans still held for the area abstraction.
+  size_t keyframe_scans_held() const;
   // The topological path accepted and forgotten by TLCA (oldest first);
   // followed by the surviving hypotheses' own paths.
   const std::vector<topology::PathEntry>& accepted_path() const { return accepted_path_; }
@@ -214,7 +220,8 @@ class HybridFilter {
   struct KeyframeRecord {
     uint64_t step = 0;
     // Shared, so a snapshot (EventInput) keeps the scans it points to
-    // alive and in place while this table grows.
+    // alive and in place while this table grows; null once released
+    // (release_keyframe_scans_before).
     std::shared_ptr<const LaserScan> scan;
     Pose2D pose;  // in the AAM frame, as the partitioner has it
   };
