@@ -168,10 +168,8 @@ std::vector<KeyframeNode> select_nodes(const std::vector<AreaVisit>& visits,
     for (size_t k = 0; k < v.poses.size(); ++k) {
       const uint64_t step = v.first_step + k;
       if (table.owner(step) != static_cast<int>(i) || !steps(step)) continue;
-      if (last) {
-        const Pose2D d = v.poses[k] - *last;
-        if (d.norm() < opt.keyframe_distance && std::fabs(d.theta) < opt.keyframe_angle) continue;
-      }
+      if (last && within_spacing(v.poses[k] - *last, opt.keyframe_distance, opt.keyframe_angle))
+        continue;
       last = v.poses[k];
       nodes.push_back({v.area, i, step, v.poses[k], Pose2D()});
     }

@@ -116,9 +116,8 @@ std::optional<area::Keyframe> HybridFilter::keyframe_due(const LogStep& step) {
   const Hypothesis& h = best();
   const Pose2D pose = h.aam_from_area + h.filter.best().path.back();
   if (has_keyframe_) {
-    const Pose2D d = pose - last_keyframe_pose_;
-    if (d.norm() < opt_.hybrid.keyframe_distance &&
-        std::fabs(d.theta) < opt_.hybrid.keyframe_angle)
+    if (within_spacing(pose - last_keyframe_pose_, opt_.hybrid.keyframe_distance,
+                       opt_.hybrid.keyframe_angle))
       return std::nullopt;
   }
   if (!area::enough_returns(step.scan)) return std::nullopt;

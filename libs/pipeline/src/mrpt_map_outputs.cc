@@ -49,10 +49,7 @@ std::vector<global_map::KeyframeNode> visit_keyframes(
     Pose2D last;
     for (size_t i = 0; i < count; ++i) {
       const Pose2D& p = visit.poses[i];
-      const Pose2D moved = p - last;
-      if (i > 0 && moved.norm() < opt.keyframe_distance &&
-          std::abs(moved.theta) < opt.keyframe_angle)
-        continue;
+      if (i > 0 && within_spacing(p - last, opt.keyframe_distance, opt.keyframe_angle)) continue;
       last = p;
       global_map::KeyframeNode n;
       n.area = visit.area;

@@ -84,9 +84,7 @@ void HmtMap::add_keyframe(AreaId id, Keyframe keyframe) {
 bool HmtMap::has_keyframe_near(AreaId id, const Pose2D& pose, double distance,
                                double angle) const {
   for (const Keyframe& k : area(id).keyframes)
-    if (std::hypot(pose.x - k.pose.x, pose.y - k.pose.y) < distance &&
-        std::fabs(wrap_angle(pose.theta - k.pose.theta)) < angle)
-      return true;
+    if (within_spacing(pose - k.pose, distance, angle)) return true;
   return false;
 }
 
