@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "hmt/topology/shortest_paths.h"
+#include "normal_equations.h"
 #include "relative_pose_factor.h"
 
 namespace hmt::global_map {
@@ -106,17 +107,25 @@ double chi2_of(const std::vector<const Arc*>& arcs, const GlobalPoses& poses) {
   return sum;
 }
 
-// The normal equations H dx = -g of chi2 linearised at `poses` (the
-// root's blocks left out).
-NormalEquations normal_equations(const std::vector<const Arc*>& arcs,
-                                 const GlobalPoses& poses, const Unknowns& u) {
-  NormalEquationsBuilder eq(u.size(), arcs.size());
-  for (const Arc* arc : arcs)
-    eq.add(u.column.at(arc->from), u.column.at(arc->to),
-           linearise_relative_pose(poses.poses.at(arc->from).mean,
-                                   poses.poses.at(arc->to).mean, arc->pose.mean),
-           information_of(*arc));
-  return eq.build();
+// The pattern of the normal equations of `arcs` (the root's blocks left
+// out).
+NormalEquations pattern_of(const std::vector<const Arc*>& arcs, const Unknowns& u) {
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(arcs.size());
+  for (const Arc* arc : arcs) pairs.emplace_back(u.column.at(arc->from), u.column.at(arc->to));
+  return NormalEquations(u.size(), pairs);
+}
+
+// The normal equations H dx = -g of chi2 linearised at `poses`, into `eq`
+// (built by pattern_of()).
+void linearise(const std::vector<const Arc*>& arcs, const GlobalPoses& poses,
+               NormalEquations* eq) {
+  eq->clear();
+  for (size_t k = 0; k < arcs.size(); ++k)
+    eq->add(k,
+            linearise_relative_pose(poses.poses.at(arcs[k]->from).mean,
+                                    poses.poses.at(arcs[k]->to).mean, arcs[k]->pose.mean),
+            information_of(*arcs[k]));
 }
 
 GlobalPoses moved(const GlobalPoses& poses, const Unknowns& u,
@@ -176,12 +185,13 @@ void set_marginal_covariances(const Cholesky& cholesky, const Unknowns& u,
 void least_squares(const std::vector<const Arc*>& arcs, const Unknowns& u,
                    const PoseGraphOptions& options, Cholesky* cholesky,
                    GlobalPoses* poses, double* chi2_now, PoseGraphReport* r) {
-  cholesky->analyzePattern(normal_equations(arcs, *poses, u).H);
+  NormalEquations eq = pattern_of(arcs, u);
+  cholesky->analyzePattern(eq.H());
   r->converged = false;
   for (int k = 0; k < options.max_iterations; ++k) {
-    const NormalEquations eq = normal_equations(arcs, *poses, u);
-    factorize(*cholesky, eq.H, "optimize_poses");
-    const Eigen::VectorXd step = cholesky->solve(-eq.g);
+    linearise(arcs, *poses, &eq);
+    factorize(*cholesky, eq.H(), "optimize_poses");
+    const Eigen::VectorXd step = cholesky->solve(-eq.g());
     ++r->iterations;
     const double before = *chi2_now;
     if (!take_step(arcs, u, step, poses, chi2_now) ||
@@ -192,7 +202,8 @@ void least_squares(const std::vector<const Arc*>& arcs, const Unknowns& u,
   }
   // The information matrix at the final estimate, for the covariances and
   // the outlier test.
-  factorize(*cholesky, normal_equations(arcs, *poses, u).H, "optimize_poses");
+  linearise(arcs, *poses, &eq);
+  factorize(*cholesky, eq.H(), "optimize_poses");
 }
 
 // The normalised residual of one arc (see the header): e^T (Sigma_ab -

@@ -15,6 +15,7 @@
 
 #include "hmt/metric_slam/scan_points.h"
 #include "hmt/common/worker_pool.h"
+#include "normal_equations.h"
 #include "relative_pose_factor.h"
 
 namespace hmt::global_map {
@@ -83,18 +84,27 @@ double cost_of(const std::vector<Edge>& edges, const std::vector<Pose2D>& x,
   return sum;
 }
 
-// column[v]: first column of variable v, -1 for the fixed root.
-NormalEquations normal_equations(const std::vector<Edge>& edges, const std::vector<Pose2D>& x,
-                                 const std::vector<int>& column, int unknowns,
-                                 const KeyframeGraphOptions& opt) {
-  NormalEquationsBuilder eq(unknowns, edges.size());
-  for (const Edge& e : edges) {
+// The pattern of H for `edges`; column[v]: first column of variable v, -1
+// for the fixed root.
+NormalEquations pattern_of(const std::vector<Edge>& edges, const std::vector<int>& column,
+                           int unknowns) {
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(edges.size());
+  for (const Edge& e : edges)
+    pairs.emplace_back(column[static_cast<size_t>(e.from)], column[static_cast<size_t>(e.to)]);
+  return NormalEquations(unknowns, pairs);
+}
+
+// H and g of `edges` linearised at x, into `eq` (built by pattern_of()).
+void linearise(const std::vector<Edge>& edges, const std::vector<Pose2D>& x,
+               const KeyframeGraphOptions& opt, NormalEquations* eq) {
+  eq->clear();
+  for (size_t k = 0; k < edges.size(); ++k) {
+    const Edge& e = edges[k];
     const LinearisedRelativePose l = linearise_relative_pose(x[e.from], x[e.to], e.mean);
     const double w = robustify(l.residual.dot(e.information * l.residual), e, opt).weight;
-    eq.add(column[static_cast<size_t>(e.from)], column[static_cast<size_t>(e.to)], l,
-           w * e.information);
+    eq->add(k, l, w * e.information);
   }
-  return eq.build();
 }
 
 std::vector<Pose2D> moved(const std::vector<Pose2D>& x, const std::vector<int>& column,
@@ -286,6 +296,7 @@ class Graph {
       }
     Cholesky cholesky;
     std::vector<Edge> edges;
+    std::optional<NormalEquations> eq;  // this round's pattern
     for (int round = 0; round < opt_.rounds; ++round) {
       const std::vector<Pose2D> before_round = x_;
       edges = fixed_;
@@ -293,11 +304,13 @@ class Graph {
       ++r.rounds;
       double cost = cost_of(edges, x_, opt_);
       if (round == 0) r.initial_cost = cost;
-      cholesky.analyzePattern(normal_equations(edges, x_, column, unknowns, opt_).H);
+      eq.reset();  // last round's pattern freed before this one is built
+      eq.emplace(pattern_of(edges, column, unknowns));
+      cholesky.analyzePattern(eq->H());
       for (int it = 0; it < opt_.max_iterations; ++it) {
-        const NormalEquations eq = normal_equations(edges, x_, column, unknowns, opt_);
-        factorize(cholesky, eq.H, "optimize_keyframe_graph");
-        const Eigen::VectorXd step = cholesky.solve(-eq.g);
+        linearise(edges, x_, opt_, &*eq);
+        factorize(cholesky, eq->H(), "optimize_keyframe_graph");
+        const Eigen::VectorXd step = cholesky.solve(-eq->g());
         ++r.iterations;
         const double before = cost;
         if (!take_step(edges, column, step, &cost) ||
@@ -321,8 +334,8 @@ class Graph {
     KeyframeGraph out;
     out.areas.root = root_;
     out.areas.unreachable = unreachable_;
-    factorize(cholesky, normal_equations(edges, x_, column, unknowns, opt_).H,
-              "optimize_keyframe_graph");
+    linearise(edges, x_, opt_, &*eq);
+    factorize(cholesky, eq->H(), "optimize_keyframe_graph");
     for (size_t a = 0; a < area_ids_.size(); ++a) {
       topology::PoseGaussian g(x_[a], Eigen::Matrix3d::Zero());
       const int k = column[a];
