@@ -166,7 +166,7 @@ int dump_config(const std::vector<std::string>& configs, const std::vector<std::
 }  // namespace
 
 int main(int argc, char** argv) {
-  hmt::fix_allocator_mmap_threshold();  // resources.h says why
+  hmt::tune_allocator();  // resources.h says why
   // A file-size limit (ulimit -f, or a quota) would otherwise kill the
   // process with SIGXFSZ in the middle of writing an output; ignored, the
   // write fails (EFBIG) and ends in the OutputError naming the file, and the

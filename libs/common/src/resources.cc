@@ -43,12 +43,15 @@ size_t peak_rss_bytes() {
 
 size_t current_rss_bytes() { return proc_status_kb("VmRSS:") * 1024; }
 
-void fix_allocator_mmap_threshold() {
+void tune_allocator() {
 #if defined(__GLIBC__)
   const char* tunables = std::getenv("GLIBC_TUNABLES");
-  if (tunables && std::strstr(tunables, "malloc.mmap_threshold")) return;
   // Setting M_MMAP_THRESHOLD also turns glibc's dynamic adjustment off.
-  mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+  if (!tunables || !std::strstr(tunables, "malloc.mmap_threshold"))
+    mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+  if ((!tunables || !std::strstr(tunables, "malloc.arena_max")) &&
+      !std::getenv("MALLOC_ARENA_MAX"))
+    mallopt(M_ARENA_MAX, 2);
 #endif
 }
 

@@ -2,9 +2,17 @@
 
 #include <gtest/gtest.h>
 
+#include <malloc.h>
+
+#include <condition_variable>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
 
 namespace hmt {
 namespace {
@@ -23,7 +31,7 @@ TEST(Resources, FreedLargeBlocksDoNotRaiseTheMmapThreshold) {
   // GLIBC_TUNABLES would make the call a no-op (the user's choice).
   const char* t = std::getenv("GLIBC_TUNABLES");
   if (t && std::strstr(t, "malloc.mmap_threshold")) GTEST_SKIP() << "GLIBC_TUNABLES sets it";
-  fix_allocator_mmap_threshold();
+  tune_allocator();
   // Without the fix, freeing a 4 MiB mapping lifts glibc's threshold past
   // 4 MiB, and the 256 KiB block below would come from the heap.
   void* big = std::malloc(4 << 20);
@@ -34,6 +42,48 @@ TEST(Resources, FreedLargeBlocksDoNotRaiseTheMmapThreshold) {
   ASSERT_NE(mid, nullptr);
   EXPECT_TRUE(is_own_mapping(mid));
   std::free(mid);
+}
+
+// The arenas glibc has made so far: malloc_info() lists one <heap> each.
+int arenas() {
+  char* text = nullptr;
+  size_t size = 0;
+  FILE* f = open_memstream(&text, &size);
+  if (!f) return -1;
+  malloc_info(0, f);
+  std::fclose(f);
+  int n = 0;
+  for (const char* p = text; (p = std::strstr(p, "<heap nr=")) != nullptr; ++p) ++n;
+  std::free(text);
+  return n;
+}
+
+TEST(Resources, ThreadsShareAtMostTwoArenas) {
+  const char* t = std::getenv("GLIBC_TUNABLES");
+  if ((t && std::strstr(t, "malloc.arena_max")) || std::getenv("MALLOC_ARENA_MAX"))
+    GTEST_SKIP() << "the environment sets the arenas";
+  tune_allocator();
+  // Six threads allocating at once, each holding its block until all have
+  // one: glibc's default would give most of them an arena of their own.
+  constexpr int kThreads = 6;
+  std::mutex m;
+  std::condition_variable cv;
+  int holding = 0;
+  std::vector<std::thread> threads;
+  for (int i = 0; i < kThreads; ++i)
+    threads.emplace_back([&] {
+      void* p = std::malloc(1000);
+      std::memset(p, 1, 1000);
+      std::unique_lock<std::mutex> lock(m);
+      ++holding;
+      cv.notify_all();
+      cv.wait(lock, [&] { return holding == kThreads; });
+      lock.unlock();
+      std::free(p);
+    });
+  for (auto& th : threads) th.join();
+  EXPECT_GE(arenas(), 1);
+  EXPECT_LE(arenas(), 2);
 }
 #endif
 
