@@ -7,7 +7,7 @@
 // values. Only the lower triangle is stored: it is all the Cholesky
 // (Eigen::Lower) reads. Assembling from triplets instead had cost, at every
 // iteration, 21 triplets of 16 bytes a constraint and the sort's copy of
-// them (on the five-lap soak's keyframe graph, 60 000 constraints, over
+// them (on the five-lap soak's keyframe graph, 47 000 constraints, over
 // 20 MB above the graph itself); the pattern and the sums are the same.
 #pragma once
 
