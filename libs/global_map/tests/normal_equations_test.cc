@@ -45,19 +45,26 @@ std::vector<Constraint> random_constraints(int poses, int count, Random& rng) {
   return out;
 }
 
+// The normal equations of `cs`, summed `passes` times from clear().
+NormalEquations summed(int unknowns, const std::vector<Constraint>& cs, int passes) {
+  std::vector<std::pair<int, int>> pairs;
+  for (const Constraint& c : cs) pairs.emplace_back(c.a, c.b);
+  NormalEquations eq(unknowns, pairs);
+  for (int pass = 0; pass < passes; ++pass) {
+    eq.clear();
+    for (size_t k = 0; k < cs.size(); ++k) eq.add(k, cs[k].l, cs[k].omega);
+  }
+  return eq;
+}
+
 TEST(NormalEquations, EqualTheDenseSumInTheLowerTriangle) {
   Random rng(7);
   const int poses = 12, unknowns = 3 * (poses - 1);
   const std::vector<Constraint> cs = random_constraints(poses, 40, rng);
-  std::vector<std::pair<int, int>> pairs;
-  for (const Constraint& c : cs) pairs.emplace_back(c.a, c.b);
-  NormalEquations eq(unknowns, pairs);
+  // A second pass starts from zero again.
+  const NormalEquations eq = summed(unknowns, cs, 2);
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(unknowns + 3, unknowns + 3);  // root first
   Eigen::VectorXd g = Eigen::VectorXd::Zero(unknowns + 3);
-  for (int pass = 0; pass < 2; ++pass) {  // a second pass starts from zero again
-    eq.clear();
-    for (size_t k = 0; k < cs.size(); ++k) eq.add(k, cs[k].l, cs[k].omega);
-  }
   for (const Constraint& c : cs) {
     Eigen::Matrix<double, 3, 6> J;
     J << c.l.d_from, c.l.d_to;
@@ -89,11 +96,7 @@ TEST(NormalEquations, EqualTheDenseSumInTheLowerTriangle) {
 TEST(NormalEquations, SolveAsTheDenseSystem) {
   Random rng(11);
   const int poses = 30, unknowns = 3 * (poses - 1);
-  const std::vector<Constraint> cs = random_constraints(poses, 200, rng);
-  std::vector<std::pair<int, int>> pairs;
-  for (const Constraint& c : cs) pairs.emplace_back(c.a, c.b);
-  NormalEquations eq(unknowns, pairs);
-  for (size_t k = 0; k < cs.size(); ++k) eq.add(k, cs[k].l, cs[k].omega);
+  const NormalEquations eq = summed(unknowns, random_constraints(poses, 200, rng), 1);
   Cholesky cholesky;
   cholesky.analyzePattern(eq.H());
   factorize(cholesky, eq.H(), "test");
