@@ -46,12 +46,12 @@ size_t current_rss_bytes() { return proc_status_kb("VmRSS:") * 1024; }
 void tune_allocator() {
 #if defined(__GLIBC__)
   const char* tunables = std::getenv("GLIBC_TUNABLES");
+  const auto user_set = [&](const char* tunable) {
+    return tunables && std::strstr(tunables, tunable);
+  };
   // Setting M_MMAP_THRESHOLD also turns glibc's dynamic adjustment off.
-  if (!tunables || !std::strstr(tunables, "malloc.mmap_threshold"))
-    mallopt(M_MMAP_THRESHOLD, 128 * 1024);
-  if ((!tunables || !std::strstr(tunables, "malloc.arena_max")) &&
-      !std::getenv("MALLOC_ARENA_MAX"))
-    mallopt(M_ARENA_MAX, 2);
+  if (!user_set("malloc.mmap_threshold")) mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+  if (!user_set("malloc.arena_max") && !std::getenv("MALLOC_ARENA_MAX")) mallopt(M_ARENA_MAX, 2);
 #endif
 }
 

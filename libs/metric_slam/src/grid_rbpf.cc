@@ -41,9 +41,8 @@ void GridRbpf::initialise(const LogStep& step) {
 }
 
 void GridRbpf::maybe_insert(Particle& p, const LaserScan& scan) {
-  const Pose2D d = p.pose - p.last_insertion;
-  if (p.inserted && d.norm() < opt_.map_update_distance &&
-      std::fabs(d.theta) < opt_.map_update_angle)
+  if (p.inserted && within_spacing(p.pose - p.last_insertion, opt_.map_update_distance,
+                                   opt_.map_update_angle))
     return;
   grid::insert_scan(p.map, p.pose, scan, opt_.insertion);
   p.last_insertion = p.pose;
@@ -123,8 +122,7 @@ bool GridRbpf::begin_step(const LogStep& input) {
   // the dead-reckoned pose in each particle's path.
   pending_motion_ = pending_motion_ + input.odometry_increment;
   ++stats_.steps;
-  if (pending_motion_.norm() < opt_.update_distance &&
-      std::fabs(pending_motion_.theta) < opt_.update_angle) {
+  if (within_spacing(pending_motion_, opt_.update_distance, opt_.update_angle)) {
     for (auto& p : particles_) p.path.push_back(p.pose + pending_motion_);
     ++stats_.skipped_steps;
     return false;

@@ -309,9 +309,7 @@ ExpectedLikelihood TransitionModel::sum_modes(const Search& search,
     const Eigen::Vector3d e = topology::difference(x, prior.mean);
     if (e.dot(S_inv * e) > opt_.gate) continue;
     const bool seen = std::any_of(modes.begin(), modes.end(), [&](const Mode& md) {
-      const Pose2D d = x - md.pose;
-      return d.norm() < opt_.mode_merge_distance &&
-             std::fabs(d.theta) < opt_.mode_merge_angle;
+      return within_spacing(x - md.pose, opt_.mode_merge_distance, opt_.mode_merge_angle);
     });
     if (seen) continue;
     // Laplace around the mode; H is the tempered Gauss-Newton information.

@@ -47,8 +47,9 @@ struct Pose2D {
   double norm() const { return std::hypot(x, y); }
 };
 
-// Whether a motion `moved` (e.g. b - a) stays under both keyframe spacings:
-// less than `distance` metres and `angle` radians.
+// Whether a motion `moved` (e.g. b - a) stays under both thresholds of a
+// spacing (keyframes, map updates, filter updates, merged modes): less
+// than `distance` metres and `angle` radians.
 inline bool within_spacing(const Pose2D& moved, double distance, double angle) {
   return moved.norm() < distance && std::fabs(moved.theta) < angle;
 }
