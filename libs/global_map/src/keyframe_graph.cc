@@ -474,11 +474,17 @@ class Graph {
     const Pose2D& g = x_[A + i];
     const LogStep* step = steps_(nodes_[i].step);
     if (!step) return;
+    // The scan's points, prepared once for all the areas (their grids share
+    // a resolution; prepared again for one that does not).
+    metric_slam::ScanPoints pts;
+    double pts_resolution = 0.0;
     for (size_t a = 0; a < A; ++a) {
       if (area_ids_[a] == nodes_[i].area || !boxes[a] || !boxes[a]->holds(g)) continue;
       const grid::OccupancyGrid& grid = *map_.area(area_ids_[a]).map;
-      const metric_slam::ScanPoints pts =
-          metric_slam::prepare_scan(step->scan, mo.max_range, mo.beam_skip, grid.resolution());
+      if (grid.resolution() != pts_resolution) {
+        pts = metric_slam::prepare_scan(step->scan, mo.max_range, mo.beam_skip, grid.resolution());
+        pts_resolution = grid.resolution();
+      }
       if (pts.hit.empty()) continue;
       ++*tried;
       const Pose2D guess = x_[a].inverse() + g;
