@@ -79,15 +79,6 @@ bool OccupancyGrid::bounds(CellIndex* min, CellIndex* max) const {
   return any;
 }
 
-bool OccupancyGrid::same_tiles(const OccupancyGrid& o) const {
-  if (resolution_ != o.resolution_ || tx0_ != o.tx0_ || ty0_ != o.ty0_ || ntx_ != o.ntx_ ||
-      nty_ != o.nty_)
-    return false;
-  for (size_t i = 0; i < tiles_.size(); ++i)
-    if (tiles_[i] != o.tiles_[i]) return false;
-  return true;
-}
-
 size_t OccupancyGrid::tile_count() const {
   size_t n = 0;
   for (const auto& t : tiles_) n += (t != nullptr);

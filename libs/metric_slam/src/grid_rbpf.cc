@@ -144,43 +144,7 @@ bool GridRbpf::begin_step(const LogStep& input) {
   st.fell_back.assign(particles_.size(), 0);
   st.before.resize(particles_.size());
   for (size_t i = 0; i < particles_.size(); ++i) st.before[i] = particles_[i].log_weight;
-  group_identical_particles(&st);
   return true;
-}
-
-size_t group_identical_particles(const std::vector<Particle>& particles,
-                                 std::vector<size_t>* group) {
-  std::vector<size_t> firsts;  // the first particle of each group
-  group->assign(particles.size(), 0);
-  for (size_t i = 0; i < particles.size(); ++i) {
-    const Particle& p = particles[i];
-    size_t g = 0;
-    for (; g < firsts.size(); ++g) {
-      const Particle& q = particles[firsts[g]];
-      if (p.pose.x == q.pose.x && p.pose.y == q.pose.y && p.pose.theta == q.pose.theta &&
-          p.map.same_tiles(q.map))
-        break;
-    }
-    if (g == firsts.size()) firsts.push_back(i);
-    (*group)[i] = g;
-  }
-  return firsts.size();
-}
-
-void GridRbpf::group_identical_particles(Step* st) const {
-  const size_t groups = metric_slam::group_identical_particles(particles_, &st->group);
-  // The first particle of each group, then the others.
-  std::vector<char> first(groups, 1);
-  st->order.clear();
-  for (size_t i = 0; i < particles_.size(); ++i)
-    if (first[st->group[i]]) {
-      st->order.push_back(i);
-      first[st->group[i]] = 0;
-    }
-  for (size_t i = 0; i < particles_.size(); ++i)
-    if (st->order[st->group[i]] != i) st->order.push_back(i);
-  st->proposals.assign(groups, Proposal());
-  st->once = OnceFlags(groups);
 }
 
 size_t GridRbpf::pending_moves() const { return step_ ? particles_.size() : 0; }
@@ -219,48 +183,35 @@ Pose2D GridRbpf::search_headings(const Particle& p, const Pose2D& u, const ScanP
   return best;
 }
 
-GridRbpf::Proposal GridRbpf::propose(const Particle& p, const Pose2D& u, const ScanPoints& pts,
-                                     const ScanPoints& lattice_pts,
-                                     double lattice_scale) const {
-  Proposal out;
-  const size_t n = pts.hit.size();
-  if (opt_.proposal != ProposalKind::kOptimal || n == 0) return out;
-  MatchScore ms;
-  out.mode = matcher_.optimize(p.map, p.pose + u, pts, &ms);
-  if (ms.matched < opt_.heading_search_ratio * static_cast<double>(n))
-    out.mode = search_headings(p, u, pts, out.mode, &ms);
-  if (ms.matched < opt_.matcher.min_match_ratio * static_cast<double>(n)) return out;
-  out.lattice = evaluate_lattice(p.map, p.pose, u, lattice_pts, lattice_scale, out.mode);
-  if (!out.lattice.ok) return out;
-  out.chol = out.lattice.cov.llt().matrixL();
-  out.used = true;
-  return out;
-}
-
-void GridRbpf::move(size_t k) {
+void GridRbpf::move(size_t i) {
   Step& st = *step_;
-  const size_t i = st.order[k];
   const ScanPoints& pts = st.pts;
   Particle& p = particles_[i];
   Random rng(mix_seed(st.seed ^ (i * 0x632be59bd9b4e019ULL)));
   const Pose2D& u = st.step.odometry_increment;
   const size_t n = pts.hit.size();
-  // The first particle of the group to get here computes the proposal; the
-  // others (the same pose in the same map) wait for it and share it. Each
-  // then draws from it with its own random stream.
-  const size_t g = st.group[i];
-  std::call_once(st.once.flags[g], [&] {
-    st.proposals[g] = propose(p, u, pts, st.lattice_pts, st.lattice_scale);
-  });
-  const Proposal& prop = st.proposals[g];
-  const bool fallback = !prop.used;
-  if (!fallback) {
-    const Eigen::Vector3d z(rng.normal(), rng.normal(), rng.normal());
-    const Eigen::Vector3d d = prop.lattice.mean + prop.chol * z;
-    p.pose = Pose2D(prop.mode.x + d.x(), prop.mode.y + d.y(), wrap_angle(prop.mode.theta + d.z()));
-    p.log_weight += prop.lattice.log_eta;
-    p.path_log_weight += prop.lattice.log_eta;
-  } else {
+  bool fallback = true;
+
+  if (opt_.proposal == ProposalKind::kOptimal && n > 0) {
+    MatchScore ms;
+    Pose2D mode = matcher_.optimize(p.map, p.pose + u, pts, &ms);
+    if (ms.matched < opt_.heading_search_ratio * static_cast<double>(n))
+      mode = search_headings(p, u, pts, mode, &ms);
+    if (ms.matched >= opt_.matcher.min_match_ratio * static_cast<double>(n)) {
+      const Lattice lat =
+          evaluate_lattice(p.map, p.pose, u, st.lattice_pts, st.lattice_scale, mode);
+      if (lat.ok) {
+        const Eigen::Matrix3d L = lat.cov.llt().matrixL();
+        const Eigen::Vector3d z(rng.normal(), rng.normal(), rng.normal());
+        const Eigen::Vector3d d = lat.mean + L * z;
+        p.pose = Pose2D(mode.x + d.x(), mode.y + d.y(), wrap_angle(mode.theta + d.z()));
+        p.log_weight += lat.log_eta;
+        p.path_log_weight += lat.log_eta;
+        fallback = false;
+      }
+    }
+  }
+  if (fallback) {
     // Odometry proposal. The weight is the same lattice estimate of the
     // normaliser, taken around the sampled pose, so that particles on either
     // proposal stay comparable.

@@ -2,8 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
-
 #include "hmt/common/config.h"
 #include "hmt/common/error.h"
 #include "sim_world.h"
@@ -196,54 +194,6 @@ TEST(GridRbpf, NewAreaAndReloadInterface) {
   // Keeps working in the reloaded map.
   for (size_t i = 20; i < 30; ++i) f.process(run.log.steps[i]);
   EXPECT_EQ(f.best().path.size(), 11u);
-}
-
-TEST(GridRbpf, GroupsParticlesAtOnePoseInTheSameTiles) {
-  const auto run = loop_run(16);
-  GridRbpf f(small_filter(1));
-  for (size_t i = 0; i < 10; ++i) f.process(run.log.steps[i]);
-  const Particle a = f.best();
-  Particle moved = a, written = a;
-  moved.pose.x = std::nextafter(moved.pose.x, 1e9);
-  // Writing a cell clones its tile: equal poses, but no longer the same tiles.
-  written.map.set_cell({0, 0}, grid::Cell{});
-  const std::vector<Particle> ps = {a, moved, a, written, a};
-  std::vector<size_t> group;
-  EXPECT_EQ(group_identical_particles(ps, &group), 3u);
-  EXPECT_EQ(group, (std::vector<size_t>{0, 1, 0, 2, 0}));
-}
-
-// After a restart every particle is at one pose in one map: one proposal
-// serves them all, each drawing its own pose from it, and the threads that
-// wait for it change nothing.
-TEST(GridRbpf, IdenticalParticlesDrawTheirOwnPosesFromOneProposal) {
-  const auto run = loop_run(17);
-  GridRbpf warm(small_filter(1));
-  for (size_t i = 0; i < 20; ++i) warm.process(run.log.steps[i]);
-  RbpfOptions one = small_filter(1), three = small_filter(3);
-  one.resample_threshold = three.resample_threshold = 0.0;  // no copies made after the step
-  GridRbpf a(one), b(three);
-  for (GridRbpf* f : {&a, &b}) {
-    f->restart(warm.best().map, warm.best().pose);
-    std::vector<size_t> group;
-    ASSERT_EQ(group_identical_particles(f->particles(), &group), 1u);
-  }
-  // Up to the first step that moves the particles.
-  size_t k = 20;
-  for (; k < run.log.steps.size(); ++k) {
-    const size_t skipped = a.stats().skipped_steps;
-    a.process(run.log.steps[k]);
-    b.process(run.log.steps[k]);
-    if (a.stats().skipped_steps == skipped) break;
-  }
-  ASSERT_LT(k, run.log.steps.size());
-  for (size_t i = 0; i < a.particles().size(); ++i) {
-    EXPECT_EQ(a.particles()[i].pose.x, b.particles()[i].pose.x);
-    EXPECT_EQ(a.particles()[i].pose.theta, b.particles()[i].pose.theta);
-    for (size_t j = 0; j < i; ++j)
-      EXPECT_NE(a.particles()[i].pose.x, a.particles()[j].pose.x) << i << " " << j;
-  }
-  EXPECT_EQ(a.stats().odometry_fallbacks, 0u);  // the proposal was the scan match's
 }
 
 TEST(GridRbpf, ResizeAndRestart) {

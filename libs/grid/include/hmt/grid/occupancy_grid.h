@@ -158,11 +158,6 @@ class OccupancyGrid {
   // Bounds of the cells in allocated tiles: [min, max] inclusive. False if empty.
   bool bounds(CellIndex* min, CellIndex* max) const;
 
-  // Whether `o` holds the very same tiles as this grid (copies that neither
-  // has written since): then the two are equal cell for cell. Grids that
-  // hold equal contents in distinct tiles are not the same.
-  bool same_tiles(const OccupancyGrid& o) const;
-
   // Tiles this grid points to, and the bytes they would take if unshared.
   size_t tile_count() const;
   size_t tile_bytes() const;

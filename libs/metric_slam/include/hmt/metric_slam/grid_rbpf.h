@@ -16,7 +16,6 @@
 
 #include <Eigen/Core>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -53,14 +52,6 @@ struct RbpfStats {
   size_t resamplings = 0;
   size_t odometry_fallbacks = 0;  // particle-steps where matching failed
 };
-
-// Groups of particles at the same pose in the same map tiles (copies that
-// neither has moved or written since: resampling's duplicates), which would
-// compute the same proposal. group[i]: particle i's group, the groups
-// numbered in the order of their first particles. Returns the number of
-// groups.
-size_t group_identical_particles(const std::vector<Particle>& particles,
-                                 std::vector<size_t>* group);
 
 // A seed scan for a new area's map: the scan taken at `path_index` of the
 // particles' current-area paths (one path entry per processed step).
@@ -168,35 +159,6 @@ class GridRbpf {
   // Replaces the particles by `count` drawn from them by the weights `w`.
   void draw(const std::vector<double>& w, size_t count);
 
-  // What a particle's move draws its pose from: the optimal proposal, a
-  // Gaussian around the scan match (`used` false: the match failed, and the
-  // particle falls back to the odometry proposal).
-  struct Proposal {
-    bool used = false;
-    Pose2D mode;
-    Lattice lattice;
-    Eigen::Matrix3d chol;  // lower Cholesky factor of lattice.cov
-  };
-  // The proposal of a particle at pose p.pose in map p.map.
-  Proposal propose(const Particle& p, const Pose2D& u, const ScanPoints& pts,
-                   const ScanPoints& lattice_pts, double lattice_scale) const;
-  // One std::once_flag per group of identical particles. The flags can be
-  // neither copied nor moved; a copy of the filter (which nothing makes in
-  // the middle of a step) gets fresh ones, and so computes its own.
-  struct OnceFlags {
-    OnceFlags() = default;
-    explicit OnceFlags(size_t n) : flags(n ? new std::once_flag[n] : nullptr), count(n) {}
-    OnceFlags(const OnceFlags& o) : OnceFlags(o.count) {}
-    OnceFlags& operator=(const OnceFlags& o) {
-      if (this != &o) *this = OnceFlags(o.count);
-      return *this;
-    }
-    OnceFlags(OnceFlags&&) = default;
-    OnceFlags& operator=(OnceFlags&&) = default;
-    std::unique_ptr<std::once_flag[]> flags;
-    size_t count = 0;
-  };
-
   // A step between begin_step() and end_step().
   struct Step {
     LogStep step;  // with the odometry accumulated since the last filtered scan
@@ -205,17 +167,7 @@ class GridRbpf {
     uint64_t seed = 0;            // the particles' streams derive from it
     std::vector<char> fell_back;  // per particle: odometry proposal used
     std::vector<double> before;   // log weights before the step
-    // Particles at the same pose in the same tiles (resampling's copies;
-    // all of them after load_area() with one pose or start_new_area())
-    // have the same proposal: it is computed once per group. group[i]:
-    // particle i's group; move(k) moves particle order[k], the first of
-    // each group before the others, so that the others rarely wait.
-    std::vector<size_t> group, order;
-    std::vector<Proposal> proposals;  // per group
-    OnceFlags once;                   // per group
   };
-  // Fills st->group, order, proposals and once.
-  void group_identical_particles(Step* st) const;
 
   RbpfOptions opt_;
   ScanMatcher matcher_;
