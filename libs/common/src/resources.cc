@@ -55,4 +55,17 @@ void tune_allocator() {
 #endif
 }
 
+void release_free_memory() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
+}
+
+bool MemoryTrimmer::maybe_release(uint64_t step) {
+  if (step < last_ + spacing_) return false;
+  last_ = step;
+  release_free_memory();
+  return true;
+}
+
 }  // namespace hmt

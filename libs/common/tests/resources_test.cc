@@ -85,7 +85,41 @@ TEST(Resources, ThreadsShareAtMostTwoArenas) {
   EXPECT_GE(arenas(), 1);
   EXPECT_LE(arenas(), 2);
 }
+
+TEST(Resources, ReleaseReturnsFreePagesPinnedBelowALiveBlock) {
+  // 64 MiB of small blocks, then one small block after them that stays:
+  // freeing the 64 MiB leaves them free in the middle of the heap, where
+  // free() alone keeps them resident.
+  constexpr size_t kBlocks = 256 * 1024, kSize = 256;
+  std::vector<void*> blocks(kBlocks);
+  for (void*& p : blocks) {
+    p = std::malloc(kSize);
+    ASSERT_NE(p, nullptr);
+    std::memset(p, 1, kSize);
+  }
+  void* pin = std::malloc(kSize);
+  ASSERT_NE(pin, nullptr);
+  std::memset(pin, 1, kSize);
+  for (void* p : blocks) std::free(p);
+  const size_t before = current_rss_bytes();
+  release_free_memory();
+  const size_t after = current_rss_bytes();
+  std::free(pin);
+  EXPECT_LT(after + (32u << 20), before) << "before " << before << " after " << after;
+}
 #endif
+
+TEST(Resources, TrimmerWaitsItsSpacingBetweenReleases) {
+  MemoryTrimmer t(100);
+  EXPECT_FALSE(t.maybe_release(0));
+  EXPECT_FALSE(t.maybe_release(99));
+  EXPECT_TRUE(t.maybe_release(100));
+  EXPECT_FALSE(t.maybe_release(150));
+  EXPECT_FALSE(t.maybe_release(199));
+  EXPECT_TRUE(t.maybe_release(230));
+  EXPECT_FALSE(t.maybe_release(329));
+  EXPECT_TRUE(t.maybe_release(330));
+}
 
 TEST(Resources, PeakIsAtLeastCurrent) {
   EXPECT_GT(current_rss_bytes(), 0u);

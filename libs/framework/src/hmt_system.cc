@@ -228,6 +228,10 @@ void HmtSystem::dispatch_event(const area::AreaDecision& decision) {
 
 void HmtSystem::on_event_result(const EventMsg& r) {
   filter_.apply_event(r.decision, r.inputs, r.outcomes);
+  // The event's transients (the parent's copies, the pruned hypotheses'
+  // maps) are freed now: their pages go back to the system, every 250
+  // steps at most (resources.h).
+  trimmer_.maybe_release(current_step());
   event_in_flight_ = false;
   event_applied_step_ = current_step();
   if (!waiting_decisions_.empty()) {

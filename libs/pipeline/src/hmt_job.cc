@@ -276,6 +276,9 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, InputSteps& steps, const LogOpe
   HmtJobSummary sum;
   sum.loop_closures = filter.stats().loop_closures_accepted;
   owned.reset();
+  // The particles' maps and the other hypotheses just went: their pages go
+  // back to the system before the global map's own allocations.
+  release_free_memory();
 
   // Area poses by least squares over every arc (002 Sec. IV-C), the
   // shortest-path tree as the fallback when the optimisation cannot run:

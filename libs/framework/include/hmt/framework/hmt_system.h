@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "hmt/area/online_partitioner.h"
+#include "hmt/common/resources.h"
 #include "hmt/framework/bounded_queue.h"
 #include "hmt/framework/framework_options.h"
 #include "hmt/framework/layers.h"
@@ -188,6 +189,7 @@ class HmtSystem {
   hybrid::HybridFilter filter_;
   size_t aam_outstanding_ = 0;      // keyframes sent, decisions not yet handled
   bool event_in_flight_ = false;    // a TSBI evaluation is out
+  MemoryTrimmer trimmer_;           // returns freed pages after events
   int in_flight_oldest_keyframe_ = 0;  // of that evaluation's decision
   uint64_t event_applied_step_ = UINT64_MAX;  // the step of the last area change
   std::vector<area::AreaDecision> waiting_decisions_;  // live: the latest one behind it
