@@ -56,8 +56,8 @@ void release_free_memory();
 class MemoryTrimmer {
  public:
   explicit MemoryTrimmer(uint64_t spacing = 250) : spacing_(spacing) {}
-  // Trims if `step` is at least `spacing` steps after the last trim (or
-  // the first call); returns whether it did.
+  // Trims if `step` is at least `spacing` steps after the last trim (or,
+  // before any, after step 0); returns whether it did.
   bool maybe_release(uint64_t step);
 
  private:
