@@ -1,0 +1,105 @@
+#!/usr/bin/env bash
+# The default configuration on every shared log over several seeds: `hmt-slam
+# run --config config/default.ini` on each CARMEN log once per seed of SEEDS
+# (metric_slam.seed), scored against the log's reference trajectory (position
+# RMSE, scripts/ate.py) and, for Intel, the ground-truth relations
+# (scripts/relation_error.py). One draw of a particle filter says little about
+# a change (a log's RMSE moves by a factor of two to five between seeds), so
+# this is the benchmark to judge one by: scripts/seeds_report.py prints per
+# log each seed's RMSE, the mean and the worst, wall time, peak RSS, areas and
+# closures, then the mean over every run and the runs above THRESHOLD.
+#
+# Environment:
+#   LOGS       [seattle freiburg-101 csail edmonton aces fhw intel acapulco
+#               infinite-corridor]
+#   SEEDS      [1 2 3]
+#   JOBS       runs at once [1]; with more, the accuracy is the same (the runs
+#              are deterministic) but wall times and peaks are disturbed
+#   CONFIG     [<repo>/config/default.ini]
+#   DATASETS   [<repo>/../shared/datasets]
+#   OUT_DIR    [/tmp/hmt-bench-seeds]; the folders of the LOGS are replaced
+#   HMT_SLAM   [<repo>/build/apps/hmt-slam]
+#   TIMEOUT    seconds a run may take [1800]
+#   THRESHOLD  position RMSE a run must not exceed (m) [0.15]
+# Extra arguments go to every `hmt-slam run` (e.g. --set k=v to try a change).
+set -euo pipefail
+REPO=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+BENCH_NAME=bench_seeds
+# shellcheck source=scripts/bench_lib.sh
+source "$REPO/scripts/bench_lib.sh"
+
+LOGS=${LOGS:-seattle freiburg-101 csail edmonton aces fhw intel acapulco infinite-corridor}
+SEEDS=${SEEDS:-1 2 3}
+JOBS=${JOBS:-1}
+CONFIG=${CONFIG:-$REPO/config/default.ini}
+DATASETS=$(realpath -m "${DATASETS:-$REPO/../shared/datasets}")
+OUT_DIR=${OUT_DIR:-/tmp/hmt-bench-seeds}
+HMT_SLAM=${HMT_SLAM:-$REPO/build/apps/hmt-slam}
+TIMEOUT=${TIMEOUT:-1800}
+THRESHOLD=${THRESHOLD:-0.15}
+PY=/usr/bin/python3
+
+[[ "$JOBS" =~ ^[1-9][0-9]*$ ]] || bench_die "JOBS must be a positive integer, not '$JOBS'"
+[[ "$TIMEOUT" =~ ^[1-9][0-9]*$ ]] || bench_die "TIMEOUT must be a positive integer, not '$TIMEOUT'"
+for s in $SEEDS; do
+  [[ "$s" =~ ^[0-9]+$ ]] || bench_die "SEEDS must be non-negative integers, not '$s'"
+done
+[[ -n "${SEEDS// /}" ]] || bench_die "SEEDS is empty"
+bench_need_tool "$HMT_SLAM" "build first: scripts/build.sh"
+bench_need_tool /usr/bin/time "GNU time: scripts/setup.sh installs it"
+bench_need_tool "$PY"
+[[ -f "$CONFIG" ]] || bench_die "configuration $CONFIG not found"
+for log in $LOGS; do
+  for f in "$DATASETS/carmen/$log.log.gz" "$DATASETS/carmen/$log.reference.txt.gz"; do
+    [[ -f "$f" ]] || bench_die "$f not found (DATASETS=$DATASETS)"
+  done
+done
+mkdir -p "$OUT_DIR"
+for log in $LOGS; do rm -rf "${OUT_DIR:?}/$log"; done
+echo "$LOGS" >"$OUT_DIR/logs.txt"
+
+# run_one LOG SEED [ARGS...]: one run into OUT_DIR/LOG/seedSEED, scored; a
+# failure is written to its error.txt (the report counts it as failed).
+run_one() {
+  local log=$1 seed=$2 d rc=0
+  shift 2
+  d=$OUT_DIR/$log/seed$seed
+  mkdir -p "$d"
+  bench_measure "$TIMEOUT" "$d/time.txt" "$d/output.txt" "$HMT_SLAM" run --quiet \
+    --config "$CONFIG" --input "$DATASETS/carmen/$log.log.gz" --out "$d/run" \
+    --set "metric_slam.seed=$seed" "$@" || rc=$?
+  if [[ $rc -ne 0 ]]; then
+    echo "$(bench_exit_reason "$rc" "$d/time.txt"): $(tail -n 1 "$d/output.txt")" >"$d/error.txt"
+    bench_log "$log seed $seed: failed (see $d/output.txt)"
+    return 0
+  fi
+  cp "$d/run/summary.json" "$d/summary.json"
+  if ! "$PY" "$REPO/scripts/ate.py" "$d/run/trajectory.tum" \
+      "$DATASETS/carmen/$log.reference.txt.gz" --json >"$d/ate.json" 2>"$d/ate.err"; then
+    echo "ate.py: $(tail -n 1 "$d/ate.err")" >"$d/error.txt"
+    rm -f "$d/ate.json"
+  fi
+  if [[ -f "$DATASETS/relations/$log.relations" ]]; then
+    "$PY" "$REPO/scripts/relation_error.py" "$d/run/trajectory.tum" \
+      "$DATASETS/relations/$log.relations" --json >"$d/relations.json" 2>/dev/null ||
+      rm -f "$d/relations.json"
+  fi
+  bench_log "$log seed $seed: $(tr -d '\n' <"$d/ate.json" 2>/dev/null || cat "$d/error.txt")"
+}
+
+running=0
+for seed in $SEEDS; do
+  for log in $LOGS; do
+    run_one "$log" "$seed" "$@" &
+    running=$((running + 1))
+    if [[ $running -ge $JOBS ]]; then
+      wait -n
+      running=$((running - 1))
+    fi
+  done
+done
+wait
+
+echo "## Default configuration over seeds $SEEDS ($(basename "$CONFIG")${*:+, $*})"
+echo
+"$PY" "$REPO/scripts/seeds_report.py" "$OUT_DIR" --threshold "$THRESHOLD"

@@ -1,0 +1,119 @@
+#!/usr/bin/python3
+"""Tests of scripts/seeds_report.py (the table of scripts/bench_seeds.sh) on
+synthetic benchmark folders.
+
+Run directly or through ctest (seeds_report_script).
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPORT = os.path.join(HERE, "..", "seeds_report.py")
+
+TIME_TXT = """\tCommand being timed: "hmt-slam run"
+\tElapsed (wall clock) time (h:mm:ss or m:ss): {wall}
+\tMaximum resident set size (kbytes): {rss_kb}
+"""
+
+
+def run(*args):
+    return subprocess.run([sys.executable, REPORT, *args], capture_output=True, text=True)
+
+
+class SeedsReport(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.out = self.dir.name
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def add(self, log, seed, rmse=None, relations=None, wall=None, rss_mb=None, areas=None,
+            closures=None, error=None):
+        d = os.path.join(self.out, log, f"seed{seed}")
+        os.makedirs(d)
+        if rmse is not None:
+            with open(os.path.join(d, "ate.json"), "w") as f:
+                json.dump({"count": 10, "rmse_m": rmse, "max_m": 2 * rmse}, f)
+        if relations is not None:
+            with open(os.path.join(d, "relations.json"), "w") as f:
+                json.dump({"count": 116, "trans_mean_m": relations}, f)
+        if wall is not None:
+            with open(os.path.join(d, "time.txt"), "w") as f:
+                f.write(TIME_TXT.format(wall=wall, rss_kb=int(rss_mb * 1024)))
+        if areas is not None:
+            with open(os.path.join(d, "summary.json"), "w") as f:
+                json.dump({"areas": areas, "loop_closures_accepted": closures}, f)
+        if error is not None:
+            with open(os.path.join(d, "error.txt"), "w") as f:
+                f.write(error)
+
+    def rows(self, text):
+        return {line.split("|")[1].strip(): [c.strip() for c in line.split("|")[2:-1]]
+                for line in text.splitlines() if line.startswith("| ") and "---" not in line}
+
+    def test_means_worst_and_count_above_threshold(self):
+        self.add("intel", 1, rmse=0.08, relations=0.05, wall="0:08.50", rss_mb=57, areas=16,
+                 closures=10)
+        self.add("intel", 2, rmse=0.20, relations=0.04, wall="0:09.50", rss_mb=59, areas=18,
+                 closures=12)
+        self.add("seattle", 1, rmse=0.05, wall="0:01.80", rss_mb=28, areas=5, closures=3)
+        self.add("seattle", 2, rmse=0.11, wall="0:02.20", rss_mb=30, areas=7, closures=5)
+        with open(os.path.join(self.out, "logs.txt"), "w") as f:
+            f.write("seattle intel\n")
+        r = run(self.out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = self.rows(r.stdout)
+        self.assertEqual(list(rows), ["log", "seattle", "intel"])  # the benchmark's order
+        self.assertEqual(rows["intel"][:4], ["0.080 (rel. 0.0500)", "0.200 (rel. 0.0400)",
+                                             "0.140", "0.200"])
+        self.assertEqual(rows["intel"][4:], ["9.0", "58", "17.0", "11.0"])
+        self.assertEqual(rows["seattle"][:4], ["0.050", "0.110", "0.080", "0.110"])
+        self.assertIn("runs: 4; position RMSE mean 0.110 m, worst 0.200 m (intel seed 2); "
+                      "above 0.15 m: 1", r.stdout)
+        self.assertIn("relation error: mean 0.0450 m over 2 runs, worst 0.0500 m", r.stdout)
+        self.assertIn("failed runs: 0", r.stdout)
+        # A stricter threshold counts more runs.
+        self.assertIn("above 0.06 m: 3", run(self.out, "--threshold", "0.06").stdout)
+
+    def test_failed_run_is_counted_not_dropped(self):
+        self.add("csail", 1, rmse=0.13)
+        self.add("csail", 2, error="timeout: still running")
+        self.add("csail", 3)  # neither figures nor an error: it failed too
+        r = run(self.out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.rows(r.stdout)["csail"][:5], ["0.130", "failed", "failed", "0.130",
+                                                            "0.130"])
+        self.assertIn("runs: 3;", r.stdout)
+        self.assertIn("failed runs: 2", r.stdout)
+        self.assertIn("csail seed 2: timeout: still running", r.stdout)
+        self.assertIn("csail seed 3: no ate.json", r.stdout)
+
+    def test_only_the_logs_of_logs_txt(self):
+        self.add("intel", 1, rmse=0.08)
+        self.add("aces", 1, rmse=0.5)  # left from another benchmark
+        with open(os.path.join(self.out, "logs.txt"), "w") as f:
+            f.write("intel\n")
+        r = run(self.out)
+        self.assertEqual(list(self.rows(r.stdout)), ["log", "intel"])
+        self.assertIn("worst 0.080 m", r.stdout)
+
+    def test_bad_input(self):
+        r = run(os.path.join(self.out, "missing"))
+        self.assertEqual(r.returncode, 4)
+        self.assertIn("not a folder", r.stderr)
+        r = run(self.out)  # empty
+        self.assertEqual(r.returncode, 4)
+        self.assertIn("no LOG/seedS runs", r.stderr)
+        self.add("intel", 1, rmse=0.08)
+        r = run(self.out, "--threshold", "nan")
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("--threshold", r.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
