@@ -3,11 +3,13 @@
 # run --config config/default.ini` on each CARMEN log once per seed of SEEDS
 # (metric_slam.seed), scored against the log's reference trajectory (position
 # RMSE, scripts/ate.py) and, for Intel, the ground-truth relations
-# (scripts/relation_error.py). One draw of a particle filter says little about
+# (scripts/relation_error.py), and whether it closes the loops the reference
+# closes (scripts/loops_closed.py). One draw of a particle filter says little about
 # a change (a log's RMSE moves by a factor of two to five between seeds), so
 # this is the benchmark to judge one by: scripts/seeds_report.py prints per
-# log each seed's RMSE, the mean and the worst, wall time, peak RSS, areas and
-# closures, then the mean over every run and the runs above THRESHOLD.
+# log each seed's RMSE, the mean and the worst, wall time, peak RSS, areas,
+# closures and the reference's loops closed, then the mean over every run,
+# the runs above THRESHOLD and the loops left open.
 #
 # Environment:
 #   LOGS       [seattle freiburg-101 csail edmonton aces fhw intel acapulco
@@ -79,6 +81,9 @@ run_one() {
     echo "ate.py: $(tail -n 1 "$d/ate.err")" >"$d/error.txt"
     rm -f "$d/ate.json"
   fi
+  "$PY" "$REPO/scripts/loops_closed.py" "$d/run/trajectory.tum" \
+    "$DATASETS/carmen/$log.reference.txt.gz" --json >"$d/loops.json" 2>/dev/null ||
+    rm -f "$d/loops.json"
   if [[ -f "$DATASETS/relations/$log.relations" ]]; then
     "$PY" "$REPO/scripts/relation_error.py" "$d/run/trajectory.tum" \
       "$DATASETS/relations/$log.relations" --json >"$d/relations.json" 2>/dev/null ||

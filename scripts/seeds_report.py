@@ -12,6 +12,7 @@ Usage: seeds_report.py OUT_DIR [--threshold M]
   OUT_DIR holds LOG/seedS/ folders, each with
     ate.json        scripts/ate.py --json of the run's trajectory
     relations.json  (optional) scripts/relation_error.py --json
+    loops.json      (optional) scripts/loops_closed.py --json
     time.txt        (optional) GNU time -v of the run
     summary.json    (optional) the run's own summary (areas, loop closures)
     error.txt       (optional) why the run failed; it is then counted as
@@ -20,8 +21,9 @@ Usage: seeds_report.py OUT_DIR [--threshold M]
 
 Prints a Markdown table: per log, each seed's position RMSE (and, where
 given, relation error), the mean and the worst, the mean wall time and peak
-RSS, areas and closures; then every run's mean, the worst, the runs above
-the threshold and the failed runs. Exit 4 when OUT_DIR holds no run.
+RSS, areas and closures, and the reference's loops closed over all seeds;
+then every run's mean, the worst, the runs above the threshold, each loop
+left open and the failed runs. Exit 4 when OUT_DIR holds no run.
 """
 import argparse
 import json
@@ -60,7 +62,7 @@ def time_report(path):
 def read_run(d):
     """One run's figures; 'error' says why it has none."""
     run = {"rmse": None, "relations": None, "wall": None, "rss": None,
-           "areas": None, "closures": None, "error": None}
+           "areas": None, "closures": None, "loops": None, "error": None}
     err = os.path.join(d, "error.txt")
     if os.path.exists(err):
         with open(err) as f:
@@ -75,6 +77,9 @@ def read_run(d):
         value = rel.get("trans_mean_m")
         if isinstance(value, (int, float)):
             run["relations"] = float(value)
+    loops = read_json(os.path.join(d, "loops.json"))
+    if loops is not None and isinstance(loops.get("each"), list):
+        run["loops"] = loops["each"]
     run["wall"], run["rss"] = time_report(os.path.join(d, "time.txt"))
     summary = read_json(os.path.join(d, "summary.json")) or {}
     if isinstance(summary.get("areas"), int):
@@ -125,10 +130,10 @@ def report(logs, threshold):
     seeds = sorted({s for runs in logs.values() for s in runs})
     lines = []
     head = ["log"] + [f"seed {s}" for s in seeds] + ["mean", "worst", "wall s", "peak MB",
-                                                     "areas", "closures"]
+                                                     "areas", "closures", "loops closed"]
     lines.append("| " + " | ".join(head) + " |")
     lines.append("|" + "---|" * len(head))
-    every, failed = [], []
+    every, failed, open_loops = [], [], []
     for log, runs in logs.items():
         row = [log]
         for s in seeds:
@@ -149,6 +154,16 @@ def report(logs, threshold):
         row += [fmt(mean(rmse)), fmt(max(rmse) if rmse else None),
                 fmt(mean([r["wall"] for r in ok]), 1), fmt(mean([r["rss"] for r in ok]), 0),
                 fmt(mean([r["areas"] for r in ok]), 1), fmt(mean([r["closures"] for r in ok]), 1)]
+        with_loops = [(s, r["loops"]) for s, r in runs.items()
+                      if r["error"] is None and r["loops"] is not None]
+        if with_loops:
+            total = sum(len(each) for _, each in with_loops)
+            closed = sum(1 for _, each in with_loops for lp in each if lp.get("closed"))
+            row.append(f"{closed}/{total}")
+            open_loops += [(log, s, lp) for s, each in with_loops for lp in each
+                           if not lp.get("closed")]
+        else:
+            row.append("-")
         lines.append("| " + " | ".join(row) + " |")
     lines.append("")
     if every:
@@ -162,6 +177,12 @@ def report(logs, threshold):
     if rel:
         lines.append(f"- relation error: mean {fmt(mean(rel), 4)} m over {len(rel)} runs, "
                      f"worst {fmt(max(rel), 4)} m")
+    lines.append(f"- loops of the references left open: {len(open_loops)}")
+    for log, seed, lp in open_loops:
+        i, j = lp.get("first_pair", ["?", "?"])
+        lines.append(f"  - {log} seed {seed}: steps {i} -> {j} "
+                     f"({fmt(lp.get('path_m'), 0)} m of path), error median "
+                     f"{fmt(lp.get('median_error_m'))} m")
     lines.append(f"- failed runs: {len(failed)}")
     lines += [f"  - {f}" for f in failed]
     return "\n".join(lines)

@@ -33,7 +33,7 @@ class SeedsReport(unittest.TestCase):
         self.dir.cleanup()
 
     def add(self, log, seed, rmse=None, relations=None, wall=None, rss_mb=None, areas=None,
-            closures=None, error=None):
+            closures=None, loops=None, error=None):
         d = os.path.join(self.out, log, f"seed{seed}")
         os.makedirs(d)
         if rmse is not None:
@@ -48,6 +48,12 @@ class SeedsReport(unittest.TestCase):
         if areas is not None:
             with open(os.path.join(d, "summary.json"), "w") as f:
                 json.dump({"areas": areas, "loop_closures_accepted": closures}, f)
+        if loops is not None:  # [(median error, closed), ...]
+            with open(os.path.join(d, "loops.json"), "w") as f:
+                json.dump({"loops": len(loops), "closed": sum(c for _, c in loops),
+                           "each": [{"first_pair": [10 * k, 10 * k + 300], "path_m": 40.0 + k,
+                                     "pairs": 3, "median_error_m": e, "max_error_m": 2 * e,
+                                     "closed": c} for k, (e, c) in enumerate(loops)]}, f)
         if error is not None:
             with open(os.path.join(d, "error.txt"), "w") as f:
                 f.write(error)
@@ -58,9 +64,9 @@ class SeedsReport(unittest.TestCase):
 
     def test_means_worst_and_count_above_threshold(self):
         self.add("intel", 1, rmse=0.08, relations=0.05, wall="0:08.50", rss_mb=57, areas=16,
-                 closures=10)
+                 closures=10, loops=[(0.05, True), (0.1, True)])
         self.add("intel", 2, rmse=0.20, relations=0.04, wall="0:09.50", rss_mb=59, areas=18,
-                 closures=12)
+                 closures=12, loops=[(0.05, True), (0.45, False)])
         self.add("seattle", 1, rmse=0.05, wall="0:01.80", rss_mb=28, areas=5, closures=3)
         self.add("seattle", 2, rmse=0.11, wall="0:02.20", rss_mb=30, areas=7, closures=5)
         with open(os.path.join(self.out, "logs.txt"), "w") as f:
@@ -71,7 +77,11 @@ class SeedsReport(unittest.TestCase):
         self.assertEqual(list(rows), ["log", "seattle", "intel"])  # the benchmark's order
         self.assertEqual(rows["intel"][:4], ["0.080 (rel. 0.0500)", "0.200 (rel. 0.0400)",
                                              "0.140", "0.200"])
-        self.assertEqual(rows["intel"][4:], ["9.0", "58", "17.0", "11.0"])
+        self.assertEqual(rows["intel"][4:], ["9.0", "58", "17.0", "11.0", "3/4"])
+        self.assertEqual(rows["seattle"][-1], "-")  # no loops.json
+        self.assertIn("loops of the references left open: 1\n"
+                      "  - intel seed 2: steps 10 -> 310 (41 m of path), error median 0.450 m",
+                      r.stdout)
         self.assertEqual(rows["seattle"][:4], ["0.050", "0.110", "0.080", "0.110"])
         self.assertIn("runs: 4; position RMSE mean 0.110 m, worst 0.200 m (intel seed 2); "
                       "above 0.15 m: 1", r.stdout)
