@@ -73,11 +73,17 @@ std::vector<std::string> run_args(const std::string& out) {
 
 TEST(Checkpoint, KilledAtRandomMomentsAndResumedEndsWithTheSameBytes) {
   const std::string dir = temp_dir("checkpoint_kill");
-  // The reference: the embedded Malaga log (its loop closed) without a stop.
+  // The reference: the embedded Malaga log (its loop closed) without a stop,
+  // timed: the kills below come at random fractions of its duration, so
+  // that a fast machine (or a slow sanitizer build) kills as often.
+  double whole_ms = 0.0;
   {
     int status = 0;
+    const auto t0 = std::chrono::steady_clock::now();
     const pid_t pid = spawn(run_args(dir + "/whole"), dir + "/whole.log");
     ASSERT_TRUE(wait_for(pid, 600000, &status));
+    whole_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                   .count();
     ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << slurp(dir + "/whole.log");
   }
   EXPECT_FALSE(fs::exists(dir + "/whole/checkpoint.bin")) << "a finished run keeps no checkpoint";
@@ -86,7 +92,11 @@ TEST(Checkpoint, KilledAtRandomMomentsAndResumedEndsWithTheSameBytes) {
   // resumed from the checkpoint if there is one, started over if not.
   const std::string out = dir + "/killed", ckpt = out + "/checkpoint.bin";
   std::mt19937 rng(20261125);
-  std::uniform_int_distribution<int> delay_ms(150, 1400);
+  // Each attempt runs for 2-20 % of the whole run: from before its first
+  // checkpoint to well past it, and short enough that a dozen attempts do
+  // not finish the log (a resumed one starts from the last checkpoint).
+  std::uniform_real_distribution<double> fraction(0.02, 0.2);
+  auto delay_ms = [&] { return 1 + static_cast<int>(fraction(rng) * whole_ms); };
   int kills = 0, resumes = 0;
   bool done = false;
   for (int attempt = 0; attempt < 60 && !done; ++attempt) {
@@ -98,7 +108,7 @@ TEST(Checkpoint, KilledAtRandomMomentsAndResumedEndsWithTheSameBytes) {
               dir + "/killed.log");
     int status = 0;
     // After 12 kills the run is left to finish.
-    const bool ended = wait_for(pid, kills < 12 ? delay_ms(rng) : 600000, &status);
+    const bool ended = wait_for(pid, kills < 12 ? delay_ms() : 600000, &status);
     if (!ended && kills < 12) {
       ::kill(pid, SIGKILL);
       ::waitpid(pid, &status, 0);
