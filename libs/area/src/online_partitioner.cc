@@ -85,15 +85,53 @@ AreaDecision OnlinePartitioner::decide() {
   // Both: the cut proposes where, the criterion decides whether.
   if (po.policy == Placement::kBoth && !criterion()) return d;
 
+  split(b.b, d);
+  return d;
+}
+
+void OnlinePartitioner::split(const std::vector<int>& local, AreaDecision& d) {
   d.new_area = true;
-  for (int i : b.b) d.new_area_keyframes.push_back(window_[i]);
+  for (int i : local) d.new_area_keyframes.push_back(window_[i]);
   for (int id : area_)
     if (!std::binary_search(d.new_area_keyframes.begin(),
                             d.new_area_keyframes.end(), id))
       d.stay.push_back(id);
-  for (int i : b.a) graph_.remove(window_[i]);
+  for (int id : window_)
+    if (!std::binary_search(d.new_area_keyframes.begin(), d.new_area_keyframes.end(), id))
+      graph_.remove(id);
   window_ = d.new_area_keyframes;
   area_ = d.new_area_keyframes;
+}
+
+AreaDecision OnlinePartitioner::end_of_log() {
+  AreaDecision d;
+  const int n = static_cast<int>(window_.size());
+  if (n >= 2) {
+    const Bisection b = spectral_bisection(
+        graph_.weight_matrix(window_),
+        BisectionOptions{options_.partition.split_method, options_.partition.min_cluster_size});
+    // tau is not asked: the question is no longer whether the robot has
+    // entered another area but whether the place it ended in is one already
+    // known. That place is the bisection's side holding the newest keyframe
+    // when it does not hold the oldest (as at any new-area event); when it
+    // does, the robot came back towards where the area began, and the place
+    // is that side's keyframes since the robot last was on the other side.
+    if (b.valid && !b.a.empty() && !b.b.empty()) {
+      std::vector<int> local;
+      if (!std::binary_search(b.a.begin(), b.a.end(), n - 1)) {
+        local = b.b;
+      } else {
+        const int last_other = b.b.back();
+        for (int i : b.a)
+          if (i > last_other) local.push_back(i);
+      }
+      if (local.size() >= static_cast<size_t>(options_.partition.min_cluster_size)) {
+        d.ncut = b.ncut;
+        split(local, d);
+      }
+    }
+  }
+  d.oldest_in_window = window_.empty() ? next_id_ : window_.front();
   return d;
 }
 

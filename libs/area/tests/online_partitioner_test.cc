@@ -180,6 +180,75 @@ TEST(area_OnlinePartitioner, AKeyframeSensingADisjointPlaceStartsANewArea) {
   EXPECT_EQ(e.new_area_keyframes, (std::vector<int>{20, 21}));
 }
 
+// Feeds `kfs` with tau 0 (no area event during the walk), then asks for the
+// end-of-log decision and checks its bookkeeping.
+AreaDecision end_of_walk(const std::vector<Keyframe>& kfs) {
+  AreaOptions o;
+  o.partition.tau = 0.0;
+  OnlinePartitioner p(o);
+  for (const auto& k : kfs) {
+    p.add_keyframe(k);
+    EXPECT_FALSE(p.update().new_area);
+  }
+  const AreaDecision d = p.end_of_log();
+  if (!d.new_area) return d;
+  std::vector<int> all = d.stay;
+  all.insert(all.end(), d.new_area_keyframes.begin(), d.new_area_keyframes.end());
+  std::sort(all.begin(), all.end());
+  EXPECT_EQ(all.size(), kfs.size());
+  for (size_t i = 0; i < all.size(); ++i) EXPECT_EQ(all[i], static_cast<int>(i));
+  EXPECT_EQ(p.current_area(), d.new_area_keyframes);
+  EXPECT_EQ(p.window(), d.new_area_keyframes);
+  EXPECT_EQ(d.oldest_in_window, d.new_area_keyframes.front());
+  return d;
+}
+
+TEST(area_OnlinePartitioner, EndOfLogReturnsThePlaceTheWalkEndedIn) {
+  // Rooms 1, 2, 3 with no area event on the way: the log's end is in room
+  // 3, and that is what end_of_log hands to TSBI, whatever tau says.
+  const auto kfs = sim::three_rooms_walk();
+  const AreaDecision d = end_of_walk(kfs);
+  ASSERT_TRUE(d.new_area);
+  EXPECT_EQ(d.new_area_keyframes.back(), static_cast<int>(kfs.size()) - 1);
+  size_t in_last_room = 0;
+  for (int id : d.new_area_keyframes) {
+    EXPECT_NE(sim::room_of(kfs[static_cast<size_t>(id)].pose.mean), 0) << id;
+    in_last_room += sim::room_of(kfs[static_cast<size_t>(id)].pose.mean) == 2;
+  }
+  EXPECT_GE(in_last_room, rooms(kfs)[2].size() - 4);
+}
+
+TEST(area_OnlinePartitioner, EndOfLogBackWhereTheAreaBeganIsTheReturnOnly) {
+  // Room 1, room 2, then room 1 again: the newest keyframe falls with the
+  // oldest, and the place is the return alone (the keyframes after the
+  // robot last was in room 2), not the first visit.
+  const auto all = sim::three_rooms_walk();
+  const auto r = rooms(all);
+  std::vector<Keyframe> kfs;
+  for (int i : r[0]) kfs.push_back(all[static_cast<size_t>(i)]);
+  for (int i : r[1]) kfs.push_back(all[static_cast<size_t>(i)]);
+  const int first_return = static_cast<int>(kfs.size());
+  for (size_t k = 0; k < 20; ++k) kfs.push_back(all[static_cast<size_t>(r[0][k])]);
+  const AreaDecision d = end_of_walk(kfs);
+  ASSERT_TRUE(d.new_area);
+  ASSERT_FALSE(d.new_area_keyframes.empty());
+  EXPECT_GE(d.new_area_keyframes.front(), first_return - 2);
+  EXPECT_EQ(d.new_area_keyframes.back(), static_cast<int>(kfs.size()) - 1);
+  EXPECT_GE(d.new_area_keyframes.size(), 15u);
+}
+
+TEST(area_OnlinePartitioner, EndOfLogWithNothingToSplitIsNoEvent) {
+  const auto kfs = sim::three_rooms_walk();
+  OnlinePartitioner p{AreaOptions{}};
+  EXPECT_FALSE(p.end_of_log().new_area);  // no keyframe
+  p.add_keyframe(kfs[0]);
+  p.update();
+  const AreaDecision d = p.end_of_log();  // one keyframe: nothing to bisect
+  EXPECT_FALSE(d.new_area);
+  EXPECT_EQ(d.oldest_in_window, 0);
+  EXPECT_EQ(p.window(), std::vector<int>{0});
+}
+
 TEST(area_OnlinePartitioner, BuiltFromAConfigSection) {
   Config cfg = Config::from_string(
       "[aam]\ntau = 0.7\nsplit_method = sweep\nwindow_size = 500\n", "t.ini");

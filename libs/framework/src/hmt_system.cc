@@ -271,6 +271,20 @@ void HmtSystem::drain() {
     event_in_flight_ = false;
     waiting_decisions_.clear();
   }
+  // The place the log ends in is put to TSBI as a new area would be (the
+  // sequential HybridFilter::finish does the same), unless the robot
+  // entered an area at the last step.
+  if (options_.hybrid.end_of_log_event && event_applied_step_ != current_step()) {
+    KeyframeMsg m;
+    m.step = current_step();
+    m.end_of_log = true;
+    ++aam_outstanding_;
+    if (!aam_.post(std::move(m))) throw Error(ExitCode::kInternal, "area abstraction stopped");
+    const DecisionMsg d = wait_reply(decisions_, "area abstraction");
+    if (d.decision.new_area) filter_.keep_most_probable();
+    on_decision(d);
+    while (event_in_flight_) on_event_result(wait_reply(event_results_, "topological inference"));
+  }
   // The results applied here may settle a hypothesis, as after any step.
   accept_if_dominant();
   while (alignments_outstanding_ > 0)
@@ -324,11 +338,15 @@ void HmtSystem::record_step(uint64_t index, double time, bool sample_memory) {
 
 void HmtSystem::on_keyframe(KeyframeMsg& m) {
   const Clock::time_point t0 = Clock::now();
-  partitioner_.add_keyframe(std::move(m.keyframe));
   DecisionMsg d;
   d.step = m.step;
-  d.decision = partitioner_.update();
-  area_layer_.record_keyframe(m.step, d.decision.new_area);
+  if (m.end_of_log) {
+    d.decision = partitioner_.end_of_log();
+  } else {
+    partitioner_.add_keyframe(std::move(m.keyframe));
+    d.decision = partitioner_.update();
+    area_layer_.record_keyframe(m.step, d.decision.new_area);
+  }
   add_time(times_.aam, m.step, ms_since(t0));
   if (!decisions_.push(std::move(d))) throw Error(ExitCode::kInternal, "metric SLAM stopped");
 }

@@ -76,6 +76,22 @@ void HybridFilter::process(const LogStep& step) {
     apply_alignment(*job, align(*job));
 }
 
+void HybridFilter::finish() {
+  if (hyps_.empty() || !opt_.hybrid.end_of_log_event) return;
+  // An area entered at the last step holds nothing the event did not weigh.
+  if (!transitions_.empty() && transitions_.back().step == step_) return;
+  const area::AreaDecision decision = aam_.end_of_log();
+  if (decision.new_area) {
+    keep_most_probable();
+    const std::vector<EventInput> inputs = prepare_event(decision);
+    std::vector<std::vector<tsbi::Outcome>> outcomes;
+    for (const EventInput& in : inputs) outcomes.push_back(evaluate(in));
+    apply_event(decision, inputs, outcomes);
+  }
+  if (const std::optional<AlignmentJob> job = accept_if_dominant())
+    apply_alignment(*job, align(*job));
+}
+
 std::optional<area::Keyframe> HybridFilter::metric_step(const LogStep& step) {
   step_ = stats_.steps++;
   time_ = step.timestamp;
@@ -353,6 +369,15 @@ std::vector<double> HybridFilter::probabilities() const {
   const double z = log_sum_exp(lw);
   for (double& x : lw) x = std::exp(x - z);
   return lw;
+}
+
+void HybridFilter::keep_most_probable() {
+  if (hyps_.size() < 2) return;
+  const size_t b = static_cast<size_t>(&best() - hyps_.data());
+  Hypothesis kept = std::move(hyps_[b]);
+  hyps_.clear();
+  hyps_.push_back(std::move(kept));
+  normalise_and_prune();
 }
 
 const Hypothesis& HybridFilter::best() const {

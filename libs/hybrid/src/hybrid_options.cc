@@ -7,6 +7,7 @@ void HybridOptions::load(Config& cfg, const std::string& s) {
   prune_probability = cfg.get_double(s, "prune_probability", prune_probability);
   min_particles = cfg.get_int(s, "min_particles", min_particles);
   event_evidence = cfg.get_bool(s, "event_evidence", event_evidence);
+  end_of_log_event = cfg.get_bool(s, "end_of_log_event", end_of_log_event);
   keyframe_distance = cfg.get_double(s, "keyframe_distance", keyframe_distance);
   keyframe_angle = cfg.get_double(s, "keyframe_angle", keyframe_angle);
   arc_std_xy = cfg.get_double(s, "arc_std_xy", arc_std_xy);

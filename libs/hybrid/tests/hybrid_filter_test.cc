@@ -321,6 +321,49 @@ TEST(HybridFilter, TheOutputMapFusesTheClosuresTheLogEndedTooEarlyToAccept) {
   EXPECT_EQ(plain.arcs().size(), h.map.arcs().size());
 }
 
+TEST(HybridFilter, TheEndOfTheLogIsPutToTsbiLikeANewArea) {
+  // The ring's loop closes at an area event soon after the robot is back on
+  // area 1's first stretch. A log that ends three steps before that event
+  // has the return inside its last area: without the end-of-log event no
+  // event weighs area 1 again; with it, the loop closes.
+  const std::vector<LogStep> cut = testing_ring::ring_ending_before_its_closure(3);
+  for (const bool end_event : {false, true}) {
+    HmtOptions o = ring_options();
+    o.hybrid.end_of_log_event = end_event;
+    HybridFilter f(o);
+    for (const auto& st : cut) f.process(st);
+    ASSERT_FALSE(testing_ring::entered_area_one_again(f));
+    const size_t events = f.stats().new_area_events;
+    f.finish();
+    EXPECT_EQ(f.stats().new_area_events, events + (end_event ? 1u : 0u));
+    EXPECT_EQ(f.stats().steps, cut.size());
+    if (!end_event) {
+      EXPECT_FALSE(testing_ring::entered_area_one_again(f));
+      continue;
+    }
+    EXPECT_TRUE(testing_ring::entered_area_one_again(f));
+    // Area 1 is the most probable place the log ended in, and the output
+    // map holds the closure fine-aligned (TLCA would accept it once its
+    // hypothesis dominated; final_map does what acceptance does).
+    EXPECT_EQ(f.best().current_area(), 1u);
+    std::vector<tlca::ClosureReport> reports;
+    const topology::HmtMap m = f.final_map(&reports);
+    bool aligned = false;
+    for (const auto& r : reports) aligned |= r.record.to == 1 && r.record.from > 2 && r.aligned;
+    for (const auto& a : f.acceptances())
+      for (const auto& c : a.closures) aligned |= c.record.to == 1 && c.record.from > 2 && c.aligned;
+    EXPECT_TRUE(aligned);
+    EXPECT_GE(m.neighbours(1).size(), 2u);
+    // The event decided within the most probable topology alone.
+    EXPECT_EQ(f.transitions().back().step, cut.size() - 1);
+    EXPECT_DOUBLE_EQ(f.transitions().back().parent_probability, 1.0);
+    // Asked again, there is nothing left to decide: the last area began at
+    // the last step.
+    f.finish();
+    EXPECT_EQ(f.stats().new_area_events, events + 1);
+  }
+}
+
 TEST(HybridFilter, Deterministic) {
   // Half the ring: a few new-area events.
   const auto run = testing_sim::simulate({{2, 2, 0}, {28, 2, 0}, {28, 20, 0}}, 0.3, 9, 0.03,

@@ -56,6 +56,33 @@ inline HmtOptions ring_options() {
   return o;
 }
 
+// Whether a transition of `f` put area 1 to TSBI from an area past area 2
+// (the ring's loop) and one of its hypotheses entered area 1 there.
+inline bool entered_area_one_again(const HybridFilter& f) {
+  for (const auto& ev : f.transitions())
+    if (ev.from_area > 2)
+      for (size_t k = 0; k < ev.outcomes.size(); ++k)
+        if (ev.outcomes[k].area == 1 && ev.children[k] != hybrid::kNoChild) return true;
+  return false;
+}
+
+// ring_run(7)'s log cut `margin` steps before the step whose area event
+// closes the loop into area 1 (run with ring_options()): a log whose return
+// lies inside its last area.
+inline std::vector<LogStep> ring_ending_before_its_closure(size_t margin) {
+  const auto run = ring_run(7);
+  HybridFilter full(ring_options());
+  size_t closing = 0;
+  for (size_t i = 0; i < run.log.steps.size() && closing == 0; ++i) {
+    full.process(run.log.steps[i]);
+    if (entered_area_one_again(full)) closing = i;
+  }
+  EXPECT_GT(closing, margin);
+  if (closing <= margin) return {};
+  return {run.log.steps.begin(),
+          run.log.steps.begin() + static_cast<std::ptrdiff_t>(closing - margin)};
+}
+
 // What "the loop closed" means on the ring: at some new-area event both
 // "new area" and "area 1 again" were weighed; TLCA accepted a closure into
 // area 1 from the area where the loop ends (not from area 2 next to it),

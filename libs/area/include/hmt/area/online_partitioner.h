@@ -56,6 +56,7 @@
 
 #include "hmt/area/area_options.h"
 #include "hmt/area/keyframe.h"
+#include "hmt/area/spectral_bisection.h"
 #include "hmt/area/sso_graph.h"
 
 namespace hmt::checkpoint {
@@ -94,6 +95,15 @@ class OnlinePartitioner {
   // (see the header comment). On a new area the current area becomes N.
   AreaDecision update();
 
+  // The log is over: the window is bisected once more and the place the
+  // robot ended in is returned as a new area, whatever the cut's Ncut: the
+  // side holding the newest keyframe, or when that side also holds the
+  // oldest, its keyframes newer than the other side's newest. The place where a log ends is often
+  // one it has seen before (a tour back to its start, a last corridor driven
+  // again); without this, a return made inside the log's last area is never
+  // put to the topological inference, and its loop stays open.
+  AreaDecision end_of_log();
+
   // Members of the current area (since the last new-area event), ascending.
   const std::vector<int>& current_area() const { return area_; }
   // The keyframes in the graph (the window), ascending.
@@ -104,6 +114,9 @@ class OnlinePartitioner {
 
  private:
   AreaDecision decide();
+  // Fills `d` with the new area made of the window's keyframes at local
+  // indices `local` (ascending) and starts the graph again from them.
+  void split(const std::vector<int>& local, AreaDecision& d);
 
   AreaOptions options_;
   SsoGraph graph_;

@@ -136,6 +136,8 @@ class HmtSystem {
   struct KeyframeMsg {
     uint64_t step = 0;
     area::Keyframe keyframe;
+    // No keyframe: the log is over (OnlinePartitioner::end_of_log).
+    bool end_of_log = false;
   };
   struct DecisionMsg {
     uint64_t step = 0;

@@ -137,6 +137,19 @@ class HybridFilter {
 
   // All five steps, in order (the sequential pipeline).
   void process(const LogStep& step);
+  // After the last step (the sequential pipeline): the area the log ends in
+  // is put to TSBI once more (OnlinePartitioner::end_of_log), unless an area
+  // event was applied at the last step, and a hypothesis that then
+  // dominates is accepted.
+  void finish();
+  // Drops every hypothesis but the most probable one. Before the end-of-log
+  // event: its outcomes split their parent's probability, and where two
+  // overlapping areas both hold the place the log ends in, the split would
+  // rank the topology below a rival for an ambiguity of its own layout,
+  // not for explaining the data worse; with the log over, no later scan
+  // can weigh them again. So the event decides within the topology the
+  // whole log made most probable.
+  void keep_most_probable();
 
   // Step 1, metric SLAM: every hypothesis processes the step; returns the
   // keyframe (in the area abstraction's continuous frame) when one is due.

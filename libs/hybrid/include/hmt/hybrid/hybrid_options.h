@@ -43,6 +43,10 @@ struct HybridOptions {
   // 22-34 s instead of 21-86 s, but the position error is 0.59-1.95 m
   // against 0.61-1.44 m, so it is an option, not the default.
   bool event_evidence = false;
+  // When the log ends, the place it ends in is put to TSBI as a new-area
+  // event would put it (OnlinePartitioner::end_of_log), so that a return
+  // made inside the log's last area can still close its loop.
+  bool end_of_log_event = true;
   // A keyframe for the area abstraction every this much motion.
   double keyframe_distance = 0.5;  // [m]
   double keyframe_angle = 0.5;     // [rad]
