@@ -44,8 +44,6 @@ AreaDecision OnlinePartitioner::decide() {
     return placement_fires(newest_uncertainty_, {newest_distinctiveness_}, {po.threshold},
                            po.e_min);
   };
-  const BisectionOptions bopt{options_.partition.split_method,
-                              options_.partition.min_cluster_size};
   const auto in = [](const std::vector<int>& v, int i) {
     return std::binary_search(v.begin(), v.end(), i);
   };
@@ -57,21 +55,14 @@ AreaDecision OnlinePartitioner::decide() {
     // the known areas; the newest keyframe alone when that side also holds
     // the oldest (or there is no valid bisection).
     if (!criterion()) return d;
-    const Bisection b = spectral_bisection(graph_.weight_matrix(window_), bopt);
-    d.new_area = true;
+    const Bisection b = bisect();
     if (b.valid) d.ncut = b.ncut;
     std::vector<int> local{n - 1};
     if (b.valid && !in(b.a, n - 1)) local = b.b;
-    for (int i : local) d.new_area_keyframes.push_back(window_[i]);
-    for (int id : area_)
-      if (!in(d.new_area_keyframes, id)) d.stay.push_back(id);
-    for (int i = 0; i < n; ++i)
-      if (!in(d.new_area_keyframes, window_[i])) graph_.remove(window_[i]);
-    window_ = d.new_area_keyframes;
-    area_ = d.new_area_keyframes;
+    split(local, d);
     return d;
   }
-  const Bisection b = spectral_bisection(graph_.weight_matrix(window_), bopt);
+  const Bisection b = bisect();
   if (!b.valid) return d;
   d.ncut = b.ncut;
   if (!(b.ncut < options_.partition.tau)) return d;
@@ -87,6 +78,12 @@ AreaDecision OnlinePartitioner::decide() {
 
   split(b.b, d);
   return d;
+}
+
+Bisection OnlinePartitioner::bisect() const {
+  return spectral_bisection(graph_.weight_matrix(window_),
+                            BisectionOptions{options_.partition.split_method,
+                                             options_.partition.min_cluster_size});
 }
 
 void OnlinePartitioner::split(const std::vector<int>& local, AreaDecision& d) {
@@ -107,16 +104,14 @@ AreaDecision OnlinePartitioner::end_of_log() {
   AreaDecision d;
   const int n = static_cast<int>(window_.size());
   if (n >= 2) {
-    const Bisection b = spectral_bisection(
-        graph_.weight_matrix(window_),
-        BisectionOptions{options_.partition.split_method, options_.partition.min_cluster_size});
+    const Bisection b = bisect();
     // tau is not asked: the question is no longer whether the robot has
     // entered another area but whether the place it ended in is one already
     // known. That place is the bisection's side holding the newest keyframe
     // when it does not hold the oldest (as at any new-area event); when it
     // does, the robot came back towards where the area began, and the place
     // is that side's keyframes since the robot last was on the other side.
-    if (b.valid && !b.a.empty() && !b.b.empty()) {
+    if (b.valid) {  // both sides hold a keyframe
       std::vector<int> local;
       if (!std::binary_search(b.a.begin(), b.a.end(), n - 1)) {
         local = b.b;

@@ -64,16 +64,10 @@ void HybridFilter::process(const LogStep& step) {
   if (const std::optional<area::Keyframe> kf = metric_step(step)) {
     aam_.add_keyframe(*kf);
     const area::AreaDecision decision = aam_.update();
-    if (decision.new_area) {
-      const std::vector<EventInput> inputs = prepare_event(decision);
-      std::vector<std::vector<tsbi::Outcome>> outcomes;
-      for (const EventInput& in : inputs) outcomes.push_back(evaluate(in));
-      apply_event(decision, inputs, outcomes);
-    }
+    if (decision.new_area) run_event(decision);
     release_keyframe_scans_before(decision.oldest_in_window);
   }
-  if (const std::optional<AlignmentJob> job = accept_if_dominant())
-    apply_alignment(*job, align(*job));
+  accept_and_align();
 }
 
 void HybridFilter::finish() {
@@ -83,11 +77,19 @@ void HybridFilter::finish() {
   const area::AreaDecision decision = aam_.end_of_log();
   if (decision.new_area) {
     keep_most_probable();
-    const std::vector<EventInput> inputs = prepare_event(decision);
-    std::vector<std::vector<tsbi::Outcome>> outcomes;
-    for (const EventInput& in : inputs) outcomes.push_back(evaluate(in));
-    apply_event(decision, inputs, outcomes);
+    run_event(decision);
   }
+  accept_and_align();
+}
+
+void HybridFilter::run_event(const area::AreaDecision& decision) {
+  const std::vector<EventInput> inputs = prepare_event(decision);
+  std::vector<std::vector<tsbi::Outcome>> outcomes;
+  for (const EventInput& in : inputs) outcomes.push_back(evaluate(in));
+  apply_event(decision, inputs, outcomes);
+}
+
+void HybridFilter::accept_and_align() {
   if (const std::optional<AlignmentJob> job = accept_if_dominant())
     apply_alignment(*job, align(*job));
 }

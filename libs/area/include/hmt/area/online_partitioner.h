@@ -98,10 +98,11 @@ class OnlinePartitioner {
   // The log is over: the window is bisected once more and the place the
   // robot ended in is returned as a new area, whatever the cut's Ncut: the
   // side holding the newest keyframe, or when that side also holds the
-  // oldest, its keyframes newer than the other side's newest. The place where a log ends is often
-  // one it has seen before (a tour back to its start, a last corridor driven
-  // again); without this, a return made inside the log's last area is never
-  // put to the topological inference, and its loop stays open.
+  // oldest, its keyframes newer than the other side's newest. The place
+  // where a log ends is often one it has seen before (a tour back to its
+  // start, a last corridor driven again); without this, a return made
+  // inside the log's last area is never put to the topological inference,
+  // and its loop stays open.
   AreaDecision end_of_log();
 
   // Members of the current area (since the last new-area event), ascending.
@@ -114,6 +115,8 @@ class OnlinePartitioner {
 
  private:
   AreaDecision decide();
+  // The window's graph bisected with the configured split method.
+  Bisection bisect() const;
   // Fills `d` with the new area made of the window's keyframes at local
   // indices `local` (ascending) and starts the graph again from them.
   void split(const std::vector<int>& local, AreaDecision& d);

@@ -230,6 +230,11 @@ class HybridFilter {
   std::vector<TrajectorySegment> final_trajectory() const;
 
  private:
+  // The sequential pipeline's steps 3 and 5: a new-area decision put to
+  // TSBI and applied; a dominant hypothesis accepted and its closures fused.
+  void run_event(const area::AreaDecision& decision);
+  void accept_and_align();
+
   struct KeyframeRecord {
     uint64_t step = 0;
     // Shared, so a snapshot (EventInput) keeps the scans it points to
