@@ -52,7 +52,7 @@ void GridRbpf::maybe_insert(Particle& p, const LaserScan& scan) {
 GridRbpf::Lattice GridRbpf::evaluate_lattice(const grid::OccupancyGrid& map,
                                              const Pose2D& from, const Pose2D& u,
                                              const ScanPoints& pts, double scale,
-                                             const Pose2D& center) const {
+                                             const Pose2D& center, double da) const {
   // Target p(z|x,m) p(x|x',u) on a 3x3x3 lattice around `center`. Two
   // temperings of the same evaluations: a mild one shapes the proposal (a
   // pose must follow the scan closely), a strong one weights the particles
@@ -61,7 +61,7 @@ GridRbpf::Lattice GridRbpf::evaluate_lattice(const grid::OccupancyGrid& map,
   const MotionSigmas sg = motion_.sigmas(u);
   const double log_norm_motion =
       -1.5 * std::log(2 * M_PI) - 2 * std::log(sg.xy) - std::log(sg.theta);
-  const double dl = opt_.sample_linear, da = opt_.sample_angular;
+  const double dl = opt_.sample_linear;
   std::array<double, 27> logq, logw;
   std::array<Eigen::Vector3d, 27> offs;
   size_t j = 0;
@@ -141,6 +141,17 @@ bool GridRbpf::begin_step(const LogStep& input) {
                          ? 1.0
                          : static_cast<double>(st.pts.hit.size()) / st.lattice_pts.hit.size();
   st.seed = mix_seed(opt_.seed ^ mix_seed(stats_.steps));
+  // Where the match's heading basin is narrower than the hill climbing's
+  // steps (far returns only, outdoors), it is narrower than the lattice's
+  // heading spacing too: the outer headings then put every far point outside
+  // the match window, the Gaussian collapses onto the match's heading and
+  // the sampled pose keeps whatever heading error the match left. There the
+  // lattice's headings are one basin (of the fine window) apart.
+  st.sample_angular = opt_.sample_angular;
+  const double far = far_range(st.pts);
+  if (matcher_.steps_over_heading_basin(far, opt_.resolution))
+    st.sample_angular = std::min(
+        st.sample_angular, ScanMatcher::heading_basin(far, opt_.matcher.window, opt_.resolution));
   st.fell_back.assign(particles_.size(), 0);
   st.before.resize(particles_.size());
   for (size_t i = 0; i < particles_.size(); ++i) st.before[i] = particles_[i].log_weight;
@@ -199,7 +210,8 @@ void GridRbpf::move(size_t i) {
       mode = search_headings(p, u, pts, mode, &ms);
     if (ms.matched >= opt_.matcher.min_match_ratio * static_cast<double>(n)) {
       const Lattice lat =
-          evaluate_lattice(p.map, p.pose, u, st.lattice_pts, st.lattice_scale, mode);
+          evaluate_lattice(p.map, p.pose, u, st.lattice_pts, st.lattice_scale, mode,
+                           st.sample_angular);
       if (lat.ok) {
         const Eigen::Matrix3d L = lat.cov.llt().matrixL();
         const Eigen::Vector3d z(rng.normal(), rng.normal(), rng.normal());
@@ -219,7 +231,8 @@ void GridRbpf::move(size_t i) {
     p.pose = motion_.sample(from, u, rng);
     if (n > 0) {
       const Lattice lat =
-          evaluate_lattice(p.map, from, u, st.lattice_pts, st.lattice_scale, p.pose);
+          evaluate_lattice(p.map, from, u, st.lattice_pts, st.lattice_scale, p.pose,
+                           st.sample_angular);
       if (lat.ok) {
         p.log_weight += lat.log_eta;
         p.path_log_weight += lat.log_eta;

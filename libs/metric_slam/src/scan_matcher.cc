@@ -234,8 +234,39 @@ void ScanMatcher::score_same_heading_in(const grid::OccupancyGrid& map, const Po
   for (size_t k = 0; k < n; ++k) out[k] = sums[k].score(scan.hit.size(), inv_2sigma2_);
 }
 
+double ScanMatcher::finest_angular_step() const {
+  return opt_.angular_step / std::ldexp(1.0, std::max(0, opt_.refinements - 1));
+}
+
+double ScanMatcher::heading_basin(double far, int window, double resolution) {
+  return (window + 0.5) * resolution / std::max(far, 1e-9);
+}
+
+bool ScanMatcher::steps_over_heading_basin(double far, double resolution) const {
+  return far > 0 &&
+         heading_basin(far, opt_.coarse_window, resolution) < 0.5 * finest_angular_step();
+}
+
+Pose2D ScanMatcher::sweep_heading(const grid::OccupancyGrid& map, const Pose2D& start,
+                                  const ScanPoints& scan, int window, double basin) const {
+  Pose2D best = start;
+  double best_ll =
+      score(map, start, scan, window, -std::numeric_limits<double>::infinity()).log_likelihood;
+  const int k_max = static_cast<int>(std::ceil(finest_angular_step() / basin));
+  for (int k = 1; k <= k_max; ++k)
+    for (int sign : {1, -1}) {
+      const Pose2D cand(start.x, start.y, wrap_angle(start.theta + sign * k * basin));
+      const double ll = score(map, cand, scan, window, best_ll).log_likelihood;
+      if (ll > best_ll) {
+        best = cand;
+        best_ll = ll;
+      }
+    }
+  return best;
+}
+
 Pose2D ScanMatcher::hill_climb(const grid::OccupancyGrid& map, const Pose2D& start,
-                               const ScanPoints& scan, int window) const {
+                               const ScanPoints& scan, int window, double* score_out) const {
   Pose2D best = start;
   double best_ll =
       score(map, best, scan, window, -std::numeric_limits<double>::infinity()).log_likelihood;
@@ -277,6 +308,7 @@ Pose2D ScanMatcher::hill_climb(const grid::OccupancyGrid& map, const Pose2D& sta
       ++moves;
     }
   }
+  *score_out = best_ll;
   return best;
 }
 
@@ -329,7 +361,25 @@ Pose2D ScanMatcher::optimize(const grid::OccupancyGrid& map, const Pose2D& start
                              Eigen::Matrix3d* information_out) const {
   // Coarse: an evenly spread subset of the beams.
   const ScanPoints coarse = spread_subset(scan, opt_.coarse_beams);
-  Pose2D best = hill_climb(map, start, coarse, opt_.coarse_window);
+  // Far returns only (outdoors): the climb's heading moves step over the
+  // basin the far points leave, and from a start a few mrad off it trades
+  // the heading error for a sideways one fitted to the near points. So the
+  // climb also starts from the best heading of a sweep at the basin's width
+  // around the start (whose position, the odometry's, is good to
+  // centimetres), and the higher of the two climbs wins. Both, because a
+  // start farther off than the sweep reaches (a turn) is the climb's own.
+  double best_ll = 0.0;
+  Pose2D best = hill_climb(map, start, coarse, opt_.coarse_window, &best_ll);
+  const double far = far_range(scan);
+  if (steps_over_heading_basin(far, map.resolution())) {
+    double swept_ll = 0.0;
+    const Pose2D swept = hill_climb(
+        map,
+        sweep_heading(map, start, coarse, opt_.coarse_window,
+                      heading_basin(far, opt_.coarse_window, map.resolution())),
+        coarse, opt_.coarse_window, &swept_ll);
+    if (swept_ll > best_ll) best = swept;
+  }
   // Fine: Gauss-Newton on all beams, kept only while the likelihood rises.
   Eigen::Matrix3d H;
   Eigen::Vector3d g;

@@ -1,6 +1,8 @@
 #include "hmt/metric_slam/scan_points.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace hmt::metric_slam {
 
@@ -20,6 +22,16 @@ ScanPoints prepare_scan(const LaserScan& scan, double max_range, int skip,
     out.free.push_back(s.transform({(r - free_step) * c, (r - free_step) * sn}));
   }
   return out;
+}
+
+double far_range(const ScanPoints& pts) {
+  if (pts.hit.empty()) return 0.0;
+  std::vector<double> r;
+  r.reserve(pts.hit.size());
+  for (const Point2D& p : pts.hit) r.push_back(std::hypot(p.x, p.y));
+  const auto at = r.begin() + static_cast<std::ptrdiff_t>(3 * (r.size() - 1) / 4);
+  std::nth_element(r.begin(), at, r.end());
+  return *at;
 }
 
 ScanPoints spread_subset(const ScanPoints& pts, int max_points) {

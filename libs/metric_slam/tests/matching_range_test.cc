@@ -131,59 +131,42 @@ TEST(MatchingRange, AutoIsTheDefaultAndANumberFixesIt) {
 }
 
 
-// A street: building fronts 18-40 m either side with gaps between them, and
-// small trees along both kerbs 6 m from the centre line. Seen within 20 m,
-// a scan holds the trees and little else.
-std::vector<testing_sim::Segment> street_world(uint64_t seed) {
-  Random rng(seed);
-  std::vector<testing_sim::Segment> w;
-  for (double side : {-1.0, 1.0})
-    for (double x = -40.0; x < 260.0;) {
-      const double len = rng.uniform(12.0, 40.0), y = side * rng.uniform(18.0, 40.0);
-      w.push_back({x, y, x + len, y});
-      w.push_back({x, y, x, y + side * 8.0});
-      w.push_back({x + len, y, x + len, y + side * 8.0});
-      x += len + rng.uniform(4.0, 15.0);
-    }
-  for (double side : {-1.0, 1.0})
-    for (double x = -20.0; x < 240.0; x += rng.uniform(8.0, 16.0)) {
-      const double cx = x, cy = side * 6.0 + rng.normal(0.0, 0.5), r = 0.25;
-      for (int k = 0; k < 6; ++k) {
-        const double a = k * M_PI / 3.0, b = (k + 1) * M_PI / 3.0;
-        w.push_back({cx + r * std::cos(a), cy + r * std::sin(a), cx + r * std::cos(b),
-                     cy + r * std::sin(b)});
-      }
-    }
-  return w;
-}
-
 // The whole point of the rule: outdoors, matched within the band the
 // returns set, the filter tracks a street far better than its odometry.
+// Eight draws of the filter, since one draw's end heading is a lottery.
 TEST(MatchingRange, AnOutdoorStreetIsTrackedWithinTheBandItsReturnsSet) {
   testing_sim::SimRun run =
       testing_sim::simulate({{0, 0, 0}, {100, 0, 0}, {100, 2, 0}, {200, 2, 0}}, 1.0, 7, 0.02,
-                            street_world(3), 80.0);
+                            testing_sim::street_world(3), 80.0);
   // Odometry whose heading drifts 0.2 degrees per metre.
   for (auto& st : run.log.steps) st.odometry_increment.theta += 0.0035 * st.odometry_increment.norm();
   RangeSample sample;
   for (const auto& st : run.log.steps)
     if (!sample.complete()) sample.add(st.scan);
-  RbpfOptions o;
-  o.particles = 10;
-  o.seed = 5;
-  ASSERT_TRUE(resolve_matching_range(o.matcher, o.insertion, sample));
-  EXPECT_GT(o.matcher.max_range, 25.0);
-  GridRbpf f(o);
-  for (const auto& st : run.log.steps) f.process(st);
   Pose2D odo = run.truth.front();
   for (size_t i = 1; i < run.log.steps.size(); ++i) odo = odo + run.log.steps[i].odometry_increment;
-  const Pose2D est = run.truth.front() + f.best().pose, truth = run.truth.back();
-  const double err = std::hypot(est.x - truth.x, est.y - truth.y);
+  const Pose2D truth = run.truth.back();
   const double odo_err = std::hypot(odo.x - truth.x, odo.y - truth.y);
-  // Measured: 1.4 m along the street and 0.01 degrees after 200 m (the
-  // odometry: 72 m); matched within 20 m instead, 5.9 m and 0.8 degrees.
-  EXPECT_LT(err, 2.5) << "odometry error " << odo_err;
-  EXPECT_LT(std::fabs(wrap_angle(est.theta - truth.theta)), 0.005);
+  double sum = 0.0;
+  const int seeds = 8;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    RbpfOptions o;
+    o.particles = 10;
+    o.seed = static_cast<uint64_t>(seed);
+    ASSERT_TRUE(resolve_matching_range(o.matcher, o.insertion, sample));
+    EXPECT_GT(o.matcher.max_range, 25.0);
+    GridRbpf f(o);
+    for (const auto& st : run.log.steps) f.process(st);
+    const Pose2D est = run.truth.front() + f.best().pose;
+    const double err = std::hypot(est.x - truth.x, est.y - truth.y);
+    sum += err;
+    // Measured after 200 m (the odometry: 72 m off): 0.40-1.75 m and 1-16
+    // mrad; before the matcher's heading sweep (scan_matcher.h), 0.36-5.0 m
+    // and up to 58 mrad; matched within 20 m instead, seed 5: 5.9 m.
+    EXPECT_LT(err, 2.5) << "seed " << seed << ", odometry error " << odo_err;
+    EXPECT_LT(std::fabs(wrap_angle(est.theta - truth.theta)), 0.025) << "seed " << seed;
+  }
+  EXPECT_LT(sum / seeds, 1.2);  // measured 0.85 m (before the sweep: 1.94 m)
 }
 
 }  // namespace

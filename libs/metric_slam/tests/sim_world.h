@@ -47,6 +47,32 @@ inline std::vector<Segment> corridor_world(double length = 60.0) {
   return w;
 }
 
+// A street: building fronts 18-40 m either side with gaps between them, and
+// small trees along both kerbs 6 m from the centre line. Seen within 20 m,
+// a scan holds the trees and little else.
+inline std::vector<Segment> street_world(uint64_t seed) {
+  Random rng(seed);
+  std::vector<Segment> w;
+  for (double side : {-1.0, 1.0})
+    for (double x = -40.0; x < 260.0;) {
+      const double len = rng.uniform(12.0, 40.0), y = side * rng.uniform(18.0, 40.0);
+      w.push_back({x, y, x + len, y});
+      w.push_back({x, y, x, y + side * 8.0});
+      w.push_back({x + len, y, x + len, y + side * 8.0});
+      x += len + rng.uniform(4.0, 15.0);
+    }
+  for (double side : {-1.0, 1.0})
+    for (double x = -20.0; x < 240.0; x += rng.uniform(8.0, 16.0)) {
+      const double cx = x, cy = side * 6.0 + rng.normal(0.0, 0.5), r = 0.25;
+      for (int k = 0; k < 6; ++k) {
+        const double a = k * M_PI / 3.0, b = (k + 1) * M_PI / 3.0;
+        w.push_back({cx + r * std::cos(a), cy + r * std::sin(a), cx + r * std::cos(b),
+                     cy + r * std::sin(b)});
+      }
+    }
+  return w;
+}
+
 // A scan of `beams` beams over `fov` (< 2 pi) centred on the heading (beam 0
 // on the right), ranges to max_range, each valid range with N(0, sigma) noise
 // from `noise` if given: hmt_sim's ray caster, counting wall crossings at any

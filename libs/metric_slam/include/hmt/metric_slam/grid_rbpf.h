@@ -141,12 +141,12 @@ class GridRbpf {
     Eigen::Matrix3d cov;
   };
   // The optimal-proposal target around `center` for a particle moving from
-  // `from` by odometry `u` in `map`.
+  // `from` by odometry `u` in `map`, headings `da` apart.
   // `pts` may be a subset of the scan; its log-likelihoods are multiplied by
   // `scale` to stand for the whole scan.
   Lattice evaluate_lattice(const grid::OccupancyGrid& map, const Pose2D& from,
                            const Pose2D& u, const ScanPoints& pts, double scale,
-                           const Pose2D& center) const;
+                           const Pose2D& center, double da) const;
   // The scan match `first` (from the odometry guess, scoring *score) and
   // the matches started at headings around the guess
   // ([metric_slam] heading_search_range): the one of highest likelihood x
@@ -164,6 +164,7 @@ class GridRbpf {
     LogStep step;  // with the odometry accumulated since the last filtered scan
     ScanPoints pts, lattice_pts;
     double lattice_scale = 1.0;
+    double sample_angular = 0.0;  // the lattice's heading spacing for this scan
     uint64_t seed = 0;            // the particles' streams derive from it
     std::vector<char> fell_back;  // per particle: odometry proposal used
     std::vector<double> before;   // log weights before the step

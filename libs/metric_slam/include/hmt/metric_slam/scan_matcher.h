@@ -68,6 +68,10 @@ class ScanMatcher {
   // Hill climbing from `start` (GMapping-style: try +-x, +-y, +-theta, take
   // the best, halve the steps when nothing improves) on a subset of beams,
   // then Gauss-Newton on all beams against the matched cells' hit means.
+  // When the scan's far points leave a heading basin narrower than half the
+  // hill climbing's last angular step (steps_over_heading_basin()), a second
+  // climb starts from the best heading of a sweep at the basin's width, and
+  // the higher scoring climb is refined.
   // `information` (if given) gets the Gauss-Newton Hessian of
   // -log p(z|x,m) at the result, J^T J / sigma^2 over the beams matched
   // there (point-to-hit-mean residuals): how sharply the scan pins the pose
@@ -75,6 +79,21 @@ class ScanMatcher {
   Pose2D optimize(const grid::OccupancyGrid& map, const Pose2D& start,
                   const ScanPoints& scan, MatchScore* best,
                   Eigen::Matrix3d* information = nullptr) const;
+
+  // The hill climbing's last (finest) angular step.
+  double finest_angular_step() const;
+  // The heading error that moves a point at range `far` by the reach of a
+  // search window of `window` cells: beyond it the point finds no obstacle
+  // and no longer guides the match. A scan's basin is that of its far points
+  // (far_range()), which pin the heading down most sharply.
+  static double heading_basin(double far, int window, double resolution);
+  // Whether the basin (at the hill climbing's window) of a scan whose far
+  // points lie at `far` is narrower than half the climb's last angular step.
+  // A move of that step then lands outside the basin from any side, so the
+  // climb keeps the heading it started from: outdoor scans, whose returns
+  // lie tens of metres away. Indoors (points within 20 m, 5 cm cells) the
+  // basin is at least half the default last step, and this is false.
+  bool steps_over_heading_basin(double far, double resolution) const;
 
   const MatcherOptions& options() const { return opt_; }
   // A cell at or above this log-odds is an obstacle to match against.
@@ -85,8 +104,14 @@ class ScanMatcher {
   // score above `limit`, it stops and returns the lowest log-likelihood.
   MatchScore score(const grid::OccupancyGrid& map, const Pose2D& pose,
                    const ScanPoints& scan, int window, double limit) const;
+  // Scores the headings start.theta +- k * basin (k = 1, 2, ...) out to the
+  // hill climbing's last angular step, at start's position, and returns the
+  // best pose (start unless one scores higher).
+  Pose2D sweep_heading(const grid::OccupancyGrid& map, const Pose2D& start,
+                       const ScanPoints& scan, int window, double basin) const;
+  // The climb's result, and in *score its score (window `window`).
   Pose2D hill_climb(const grid::OccupancyGrid& map, const Pose2D& start,
-                    const ScanPoints& scan, int window) const;
+                    const ScanPoints& scan, int window, double* score) const;
   // J^T J and J^T r of the point-to-hit-mean residuals at `pose`, and the
   // score there, in one pass; returns the number of matched beams.
   int normal_equations(const grid::OccupancyGrid& map, const ScanPoints& scan,

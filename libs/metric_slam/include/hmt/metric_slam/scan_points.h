@@ -19,6 +19,11 @@ struct ScanPoints {
 ScanPoints prepare_scan(const LaserScan& scan, double max_range, int skip,
                         double free_step);
 
+// The distance from the robot within which three quarters of the points
+// lie (0 without points). A heading error moves a point in proportion to its
+// range, so this is the lever arm of the points that pin a heading down.
+double far_range(const ScanPoints& pts);
+
 // At most `max_points` points spread evenly over the scan (all if 0 or if
 // the scan has no more).
 ScanPoints spread_subset(const ScanPoints& pts, int max_points);
