@@ -93,6 +93,12 @@ ScanMatcher::ScanMatcher(const MatcherOptions& opt) : opt_(opt) {
   inv_2sigma2_ = 1.0 / (2.0 * opt.sigma * opt.sigma);
 }
 
+double ScanMatcher::unmatched_beam_cost(double resolution) const {
+  // FieldSum's cap: a beam is charged at most the window's reach.
+  const double reach = (opt_.window + 0.5) * resolution;
+  return reach * reach * inv_2sigma2_;
+}
+
 template <class F>
 void ScanMatcher::for_each_match(const grid::OccupancyGrid& map, const Pose2D& pose,
                                  const ScanPoints& scan, int w, F&& f) const {

@@ -8,7 +8,10 @@
 // drawn from that Gaussian; the weight is multiplied by the lattice estimate
 // of the normaliser eta = integral of p(z|x,m) p(x|x',u) dx. When matching
 // fails (too few beams explained) the particle falls back to the odometry
-// proposal, weighted by the likelihood of its sample.
+// proposal, weighted by the same lattice estimate around its sample; on a
+// scan with too few beams to tell particles apart by their weights (open
+// ground outdoors) it moves by the odometry without drawn noise
+// (GridRbpf::move says why).
 //
 // Maps share unchanged tiles between particles (see grid::OccupancyGrid), so
 // resampling and memory cost scale with what changed, not with map size.
@@ -165,6 +168,10 @@ class GridRbpf {
     ScanPoints pts, lattice_pts;
     double lattice_scale = 1.0;
     double sample_angular = 0.0;  // the lattice's heading spacing for this scan
+    // Whether the scan has beams enough for its weights to tell particles
+    // apart (GridRbpf::begin_step); a particle whose match fails on a scan
+    // that cannot moves by the odometry alone.
+    bool can_weigh = true;
     uint64_t seed = 0;            // the particles' streams derive from it
     std::vector<char> fell_back;  // per particle: odometry proposal used
     std::vector<double> before;   // log weights before the step

@@ -95,6 +95,11 @@ class ScanMatcher {
   // basin is at least half the default last step, and this is false.
   bool steps_over_heading_basin(double far, double resolution) const;
 
+  // How much lower the log-likelihood of a beam with no obstacle in the
+  // window is than that of a beam on an obstacle: the most one beam can tell
+  // two poses apart by.
+  double unmatched_beam_cost(double resolution) const;
+
   const MatcherOptions& options() const { return opt_; }
   // A cell at or above this log-odds is an obstacle to match against.
   grid::LogOdds occupied_threshold() const { return occ_threshold_; }
