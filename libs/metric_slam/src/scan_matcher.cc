@@ -94,9 +94,8 @@ ScanMatcher::ScanMatcher(const MatcherOptions& opt) : opt_(opt) {
 }
 
 double ScanMatcher::unmatched_beam_cost(double resolution) const {
-  // FieldSum's cap: a beam is charged at most the window's reach.
-  const double reach = (opt_.window + 0.5) * resolution;
-  return reach * reach * inv_2sigma2_;
+  // What the score charges one beam that finds no obstacle.
+  return -FieldSum(resolution, opt_.window).bound(1, inv_2sigma2_);
 }
 
 template <class F>

@@ -168,8 +168,7 @@ std::vector<Pose2D> street_draws(const testing_sim::SimRun& run) {
 // returns set, the filter tracks a street far better than its odometry.
 TEST(MatchingRange, AnOutdoorStreetIsTrackedWithinTheBandItsReturnsSet) {
   const testing_sim::SimRun run = drifting_street();
-  Pose2D odo = run.truth.front();
-  for (size_t i = 1; i < run.log.steps.size(); ++i) odo = odo + run.log.steps[i].odometry_increment;
+  const Pose2D odo = testing_sim::dead_reckoning(run);
   const Pose2D truth = run.truth.back();
   const double odo_err = std::hypot(odo.x - truth.x, odo.y - truth.y);
   const std::vector<Pose2D> ends = street_draws(run);
@@ -195,18 +194,9 @@ TEST(MatchingRange, AnOutdoorStreetIsTrackedWithinTheBandItsReturnsSet) {
 // their match failed and skipped the heading search: 0.34 and 0.58 rad
 // (34 m); with the first rule alone, 0.29 and 0.47 rad.
 TEST(MatchingRange, AStreetStretchOfAFewReturnsTurnsNoMoreThanItsOdometry) {
-  testing_sim::SimRun run = drifting_street();
   const size_t first = 60, last = 139;
-  for (size_t i = first; i <= last; ++i) {
-    LaserScan& s = run.log.steps.at(i).scan;
-    for (size_t b = 0; b < s.size(); ++b)
-      if (b % 30 != 0) {
-        s.ranges[b] = s.max_range;
-        s.valid[b] = 0;
-      }
-  }
-  Pose2D odo = run.truth[first - 1];
-  for (size_t i = first; i <= last; ++i) odo = odo + run.log.steps[i].odometry_increment;
+  const testing_sim::SimRun run = testing_sim::with_sparse_scans(drifting_street(), first, last, 30);
+  const Pose2D odo = testing_sim::dead_reckoning(run, first, last);
   const double odo_turn = std::fabs(wrap_angle(odo.theta - run.truth[last].theta));
   double sum = 0.0, worst = 0.0;
   const std::vector<Pose2D> ends = street_draws(run);

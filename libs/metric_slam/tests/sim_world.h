@@ -137,4 +137,27 @@ inline SimRun simulate(const std::vector<Pose2D>& waypoints, double step,
   return run;
 }
 
+// The pose reached from truth[first - 1] by the odometry of steps
+// first..last (by default the whole run, from its first pose).
+inline Pose2D dead_reckoning(const SimRun& run, size_t first = 1, size_t last = 0) {
+  if (last == 0) last = run.log.steps.size() - 1;
+  Pose2D p = run.truth.at(first - 1);
+  for (size_t i = first; i <= last; ++i) p = p + run.log.steps.at(i).odometry_increment;
+  return p;
+}
+
+// Steps first..last of the run keep only every `keep`-th beam's return
+// (0: none): open ground outdoors, where a scan holds a few trees or none.
+inline SimRun with_sparse_scans(SimRun run, size_t first, size_t last, size_t keep) {
+  for (size_t i = first; i <= last; ++i) {
+    LaserScan& s = run.log.steps.at(i).scan;
+    for (size_t b = 0; b < s.size(); ++b)
+      if (keep == 0 || b % keep != 0) {
+        s.ranges[b] = s.max_range;
+        s.valid[b] = 0;
+      }
+  }
+  return run;
+}
+
 }  // namespace hmt::testing_sim
