@@ -70,6 +70,18 @@ void SearchLattice::cells(const std::vector<Point2D>& pts, int t, int* cx, int* 
   }
 }
 
+namespace {
+
+// The gate and its bounding box: |e_k| <= sqrt(gate cov_kk) on each axis.
+void set_gate(SearchLattice* l, double gate, const Eigen::Matrix3d& cov) {
+  l->gate = gate;
+  l->nx = static_cast<int>(std::sqrt(gate * cov(0, 0)) / l->step_xy());
+  l->ny = static_cast<int>(std::sqrt(gate * cov(1, 1)) / l->step_xy());
+  l->nt = static_cast<int>(std::min(M_PI, std::sqrt(gate * cov(2, 2))) / l->step_theta);
+}
+
+}  // namespace
+
 SearchLattice gate_lattice(const topology::PoseGaussian& prior, double gate, double step_xy,
                            double step_theta, double resolution) {
   SearchLattice l;
@@ -78,11 +90,59 @@ SearchLattice gate_lattice(const topology::PoseGaussian& prior, double gate, dou
   l.step_cells = std::max(1, static_cast<int>(std::lround(step_xy / resolution)));
   l.step_theta = step_theta;
   l.information = prior.cov.inverse();
-  l.gate = gate;
-  // The gate's bounding box: |e_k| <= sqrt(gate cov_kk) on each axis.
-  l.nx = static_cast<int>(std::sqrt(gate * prior.cov(0, 0)) / l.step_xy());
-  l.ny = static_cast<int>(std::sqrt(gate * prior.cov(1, 1)) / l.step_xy());
-  l.nt = static_cast<int>(std::min(M_PI, std::sqrt(gate * prior.cov(2, 2))) / step_theta);
+  set_gate(&l, gate, prior.cov);
+  return l;
+}
+
+int root_level(const SearchLattice& l, int levels) {
+  int top = 0;
+  while (top + 1 < levels && (1 << top) < 2 * std::max(l.nx, l.ny) + 1) ++top;
+  return top;
+}
+
+namespace {
+
+// The number of root blocks [-n + k b, -n + (k + 1) b - 1] (k >= 0, starts
+// at most n) whose start lies in [lo, hi].
+int64_t starts_within(int n, int b, int64_t lo, int64_t hi) {
+  lo = std::max<int64_t>(lo, -n);
+  hi = std::min<int64_t>(hi, n);
+  if (lo > hi) return 0;
+  // First k with -n + k b >= lo, last with -n + k b <= hi.
+  const int64_t k0 = (lo + n + b - 1) / b, k1 = (hi + n) / b;
+  return std::max<int64_t>(0, k1 - k0 + 1);
+}
+
+}  // namespace
+
+int64_t roots_on_map(const CostStack& stack, const SearchLattice& l,
+                     const std::vector<Point2D>& pts) {
+  const int top = root_level(l, stack.levels());
+  int rx0, ry0, rx1, ry1;
+  if (pts.empty() || !stack.raster(top, &rx0, &ry0, &rx1, &ry1)) return 0;
+  const int s = l.step_cells, b = 1 << top;
+  std::vector<int> cx(pts.size()), cy(pts.size());
+  int64_t n = 0;
+  for (int t = -l.nt; t <= l.nt; ++t) {
+    l.cells(pts, t, cx.data(), cy.data());
+    const auto [x0, x1] = std::minmax_element(cx.begin(), cx.end());
+    const auto [y0, y1] = std::minmax_element(cy.begin(), cy.end());
+    // A root at (i, j) is on the map when the points' box moved by (i s,
+    // j s) meets the raster (bnb_modes' test for its first pose).
+    auto floor_div = [](int64_t a, int64_t d) { return a >= 0 ? a / d : -((-a + d - 1) / d); };
+    auto ceil_div = [&](int64_t a, int64_t d) { return -floor_div(-a, d); };
+    n += starts_within(l.nx, b, ceil_div(rx0 - *x1, s), floor_div(rx1 - *x0, s)) *
+         starts_within(l.ny, b, ceil_div(ry0 - *y1, s), floor_div(ry1 - *y0, s));
+  }
+  return n;
+}
+
+SearchLattice budget_lattice(const CostStack& stack, const SearchLattice& lattice,
+                             const std::vector<Point2D>& pts, int64_t max_roots) {
+  SearchLattice l = lattice;
+  const Eigen::Matrix3d cov = lattice.information.inverse();
+  // Ends: at a radius of a millionth the box is one pose.
+  while (roots_on_map(stack, l, pts) > max_roots && l.gate > 1e-6) set_gate(&l, 0.8 * l.gate, cov);
   return l;
 }
 
@@ -220,9 +280,7 @@ std::vector<SearchMode> bnb_modes(const CostStack& stack, const SearchLattice& l
                     static_cast<int8_t>(level), inside});
     std::push_heap(heap.begin(), heap.end(), cmp);
   };
-  // Roots: blocks as large as the stack allows, or as the window needs.
-  int top = 0;
-  while (top + 1 < stack.levels() && (1 << top) < 2 * std::max(l.nx, l.ny) + 1) ++top;
+  const int top = root_level(l, stack.levels());
   for (int t = -l.nt; t <= l.nt; ++t)
     for (int j = -l.ny; j <= l.ny; j += 1 << top)
       for (int i = -l.nx; i <= l.nx; i += 1 << top) push(top, t, i, j, false);

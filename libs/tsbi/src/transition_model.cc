@@ -167,8 +167,11 @@ std::vector<Pose2D> TransitionModel::bnb_search(const CostStack& stack, const Ma
                                                 const PoseGaussian& prior,
                                                 const metric_slam::ScanPoints& obs) const {
   const std::vector<Point2D> pts = metric_slam::spread_subset(obs, opt_.search_points).hit;
-  const SearchLattice l = gate_lattice(prior, opt_.gate, opt_.bnb_step_xy, opt_.bnb_step_theta,
-                                       field.resolution());
+  // The roots may take a quarter of the budget, the rest going to the
+  // descent from them.
+  const SearchLattice l = budget_lattice(
+      stack, gate_lattice(prior, opt_.gate, opt_.bnb_step_xy, opt_.bnb_step_theta, field.resolution()),
+      pts, opt_.bnb_max_blocks / 4);
   ModeQuery q;
   q.count = opt_.search_modes;
   q.separation_xy = opt_.bnb_separation_xy;

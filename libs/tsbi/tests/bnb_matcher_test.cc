@@ -173,5 +173,83 @@ TEST(BnbModes, ACostLimitNobodyReachesLeavesNoMode) {
   EXPECT_TRUE(bnb_modes(stack, l, pts, q).empty());
 }
 
+// A loop closed after a long tour: the prior's mean is 0.3 m and 0.02 rad
+// from the truth, but its spread (40 m, 0.7 rad) is what many arcs composed
+// give; the area is a long block of offices, so most roots of the gate's
+// box meet its map.
+struct LongLoop {
+  metric_slam::ScanMatcher matcher{metric_slam::MatcherOptions{}};
+  std::vector<testing_sim::Segment> world = long_offices();
+  std::shared_ptr<const grid::OccupancyGrid> map =
+      map_of(world, Pose2D(), {{4, 3, 0}, {14, 3, 0}, {24, 3, 0}, {34, 3, 0}, {44, 3, 0}});
+  MatchField field{*map, matcher.occupied_threshold()};
+  Pose2D truth{23.3, 2.7, 0.2};
+  std::vector<Point2D> pts = metric_slam::spread_subset(observe(world, {truth}).points, 100).hit;
+  PoseGaussian prior{truth + Pose2D(0.3, -0.2, 0.02), diag(40.0, 0.7)};
+  CostStack stack{field, matcher.options().coarse_window, 1, 6};
+
+  // Offices 5 m wide either side of a 6 m hall, 50 m long.
+  static std::vector<testing_sim::Segment> long_offices() {
+    std::vector<testing_sim::Segment> w = {{0, 0, 50, 0}, {50, 0, 50, 6}, {50, 6, 0, 6}, {0, 6, 0, 0}};
+    for (double x = 5; x < 50; x += 5) {
+      w.push_back({x, 0, x, 1.5 + 0.1 * x / 5});
+      w.push_back({x + 1, 6, x + 1, 4.2 - 0.1 * x / 5});
+    }
+    return w;
+  }
+};
+
+TEST(BudgetLattice, IsTheGateLatticeWhereItsRootsFitTheBudget) {
+  const LongLoop s;
+  const SearchLattice full = gate_lattice(s.prior, 16.27, 0.05, 0.01, 0.05);
+  const int64_t roots = roots_on_map(s.stack, full, s.pts);
+  ASSERT_GT(roots, 1000);
+  // The box's roots at every heading bound those on the map.
+  const int b = 1 << root_level(full, s.stack.levels());
+  EXPECT_LE(roots, int64_t{2 * full.nt + 1} * ((2 * full.nx) / b + 1) * ((2 * full.ny) / b + 1));
+  const SearchLattice same = budget_lattice(s.stack, full, s.pts, roots);
+  EXPECT_EQ(same.gate, full.gate);
+  EXPECT_EQ(same.nx, full.nx);
+  EXPECT_EQ(same.ny, full.ny);
+  EXPECT_EQ(same.nt, full.nt);
+  // Narrowed as far as the budget needs, about the same mean, and no further.
+  const SearchLattice narrow = budget_lattice(s.stack, full, s.pts, roots / 10);
+  EXPECT_LE(roots_on_map(s.stack, narrow, s.pts), roots / 10);
+  SearchLattice wider = narrow;
+  wider.gate = narrow.gate / 0.8;
+  wider.nx = static_cast<int>(std::sqrt(wider.gate) * 40.0 / 0.05);
+  wider.ny = wider.nx;
+  wider.nt = static_cast<int>(std::min(M_PI, std::sqrt(wider.gate) * 0.7) / 0.01);
+  EXPECT_GT(roots_on_map(s.stack, wider, s.pts), roots / 10);
+  EXPECT_LT(narrow.gate, full.gate);
+  EXPECT_EQ(narrow.center.x, full.center.x);
+  EXPECT_EQ(narrow.information, full.information);
+  for (int t : {-narrow.nt, 0, narrow.nt})
+    EXPECT_EQ(narrow.pose(3, -2, t).theta, full.pose(3, -2, t).theta);
+}
+
+TEST(BnbModes, APriorWiderThanTheBudgetIsSearchedOverItsMostProbablePart) {
+  // Over the whole gate the budget runs out among the roots of the first
+  // headings bounded -- the gate's edge -- and the truth is never reached;
+  // over the part of the gate the budget covers it is found.
+  const LongLoop s;
+  ModeQuery q;
+  q.count = 1;
+  q.max_blocks = 200000;
+  auto found = [&](const std::vector<SearchMode>& modes) {
+    return !modes.empty() && (modes[0].pose - s.truth).norm() < 0.1 &&
+           std::fabs(wrap_angle(modes[0].pose.theta - s.truth.theta)) < 0.02;
+  };
+  const SearchLattice full = gate_lattice(s.prior, 16.27, 0.05, 0.01, 0.05);
+  ASSERT_GT(roots_on_map(s.stack, full, s.pts), q.max_blocks);
+  SearchStats full_stats;
+  EXPECT_FALSE(found(bnb_modes(s.stack, full, s.pts, q, &full_stats)));
+  EXPECT_TRUE(full_stats.stopped);
+  const SearchLattice part = budget_lattice(s.stack, full, s.pts, q.max_blocks / 4);
+  SearchStats part_stats;
+  EXPECT_TRUE(found(bnb_modes(s.stack, part, s.pts, q, &part_stats)));
+  EXPECT_LT(part_stats.blocks, q.max_blocks);
+}
+
 }  // namespace
 }  // namespace hmt::tsbi

@@ -74,6 +74,28 @@ struct SearchLattice {
 SearchLattice gate_lattice(const topology::PoseGaussian& prior, double gate, double step_xy,
                            double step_theta, double resolution);
 
+// The level of the blocks bnb_modes starts from (its roots) with a stack of
+// `levels` levels: as large as the stack allows, or as the window needs.
+int root_level(const SearchLattice& lattice, int levels);
+
+// How many roots bnb_modes bounds over `lattice`, at most: those of the
+// gate's bounding box, at every heading, that put some point on the stack's
+// map (the others cost the maximum with no bound computed).
+int64_t roots_on_map(const CostStack& stack, const SearchLattice& lattice,
+                     const std::vector<Point2D>& pts);
+
+// `lattice` (from gate_lattice()), unless its roots would take more than
+// `max_roots` of the search's budget of blocks: then its gate narrowed (the
+// squared Mahalanobis radius by factors of 0.8, about the same mean) until
+// they take no more. A prior far wider than the budget can search (a loop
+// of a kilometre outdoors, composed over many arcs: 100-200 m and 0.6-0.8
+// rad) is then searched exactly over its most probable part, instead of
+// over the roots the search happens to bound first (those of the headings
+// at the gate's edge) and no further. The same lattice poses keep the same
+// indices; only the gate and the half-extents shrink.
+SearchLattice budget_lattice(const CostStack& stack, const SearchLattice& lattice,
+                             const std::vector<Point2D>& pts, int64_t max_roots);
+
 struct SearchMode {
   int64_t cost = 0;  // sum of the points' costs (cost_stack.h), lower is better
   int i = 0, j = 0, t = 0;
