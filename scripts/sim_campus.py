@@ -4,7 +4,7 @@ not test: a campus of 5 x 4 blocks (80 x 60 m, streets 16 m wide) with one
 to three buildings per block set back from the street, lawns between them,
 and trees along the kerbs; a robot drives a 1.6 km tour along the streets
 with two loops (it comes back along its first street at the end), one scan
-per metre or so, a 180 degree laser of 181 beams reaching 80 m (no return
+per metre or so, a 180 degree laser of 181 beams (or, with --fov 360, a full turn of 360) reaching 80 m (no return
 written as 81.91, as CARMEN logs do), range noise 2 cm.
 
 Odometry: each step's motion with its translation scaled by 1 + s + noise
@@ -14,7 +14,7 @@ of 0.001 (fair) or 0.004 (harsh) rad per metre.
 Outputs OUT.log.gz (CARMEN FLASER lines) and OUT.reference.txt.gz (the true
 poses, "t x y theta" per scan, for scripts/ate.py).
 
-Usage: sim_campus.py OUT [--seed N] [--odometry fair|harsh]
+Usage: sim_campus.py OUT [--seed N] [--odometry fair|harsh] [--fov 180|360]
 """
 import argparse
 import gzip
@@ -96,8 +96,13 @@ def drive(rng):
     return np.array(poses)
 
 
-def raycast(S, x, y, th, rng):
-    ang = th + np.radians(np.arange(181) - 90.0)
+def bearings(fov):
+    """The beams' bearings in the sensor frame (rad), one a degree."""
+    return np.radians(np.arange(181) - 90.0) if fov == 180 else np.radians(np.arange(360) - 180.0)
+
+
+def raycast(S, x, y, th, rng, fov):
+    ang = th + bearings(fov)
     dx, dy = np.cos(ang), np.sin(ang)
     near = np.minimum(np.hypot(S[:, 0] - x, S[:, 1] - y), np.hypot(S[:, 2] - x, S[:, 3] - y)) < MAX_RANGE + 100
     s = S[near]
@@ -138,6 +143,9 @@ def main():
     ap.add_argument("out")
     ap.add_argument("--seed", type=int, default=3)
     ap.add_argument("--odometry", choices=("fair", "harsh"), default="fair")
+    ap.add_argument("--fov", type=int, choices=(180, 360), default=180,
+                    help="the laser's field of view (degrees): 180 (FLASER lines) or "
+                         "360 (ROBOTLASER1 lines), a beam a degree")
     a = ap.parse_args()
     rng = np.random.default_rng(a.seed)
     harsh = a.odometry == "harsh"
@@ -146,12 +154,19 @@ def main():
     odo = odometry(poses, rng, harsh)
     with gzip.open(a.out + ".log.gz", "wt") as f, gzip.open(a.out + ".reference.txt.gz", "wt") as g:
         for k, (x, y, th) in enumerate(poses):
-            r = raycast(S, x, y, th, rng)
+            r = raycast(S, x, y, th, rng, a.fov)
             o = odo[k]
             ot = math.atan2(math.sin(o[2]), math.cos(o[2]))
             t = 100.0 + 2.0 * k
-            f.write("FLASER 181 " + " ".join("%.3f" % v for v in r) +
-                    " %.4f %.4f %.5f %.4f %.4f %.5f %.3f sim %.3f\n" % (o[0], o[1], ot, o[0], o[1], ot, t, t))
+            ranges = " ".join("%.3f" % v for v in r)
+            if a.fov == 180:
+                f.write("FLASER 181 " + ranges +
+                        " %.4f %.4f %.5f %.4f %.4f %.5f %.3f sim %.3f\n" % (o[0], o[1], ot, o[0], o[1], ot, t, t))
+            else:  # a full turn: ROBOTLASER1, which states its first bearing and step
+                f.write("ROBOTLASER1 0 %.6f %.6f %.6f %.1f 0.01 0 %d %s 0"
+                        " %.4f %.4f %.5f %.4f %.4f %.5f 0 0 0 0 0 %.3f sim %.3f\n"
+                        % (-math.pi, 2 * math.pi, math.radians(1), MAX_RANGE, len(r), ranges,
+                           o[0], o[1], ot, o[0], o[1], ot, t, t))
             g.write("%.3f %.4f %.4f %.5f\n" % (t, x, y, math.atan2(math.sin(th), math.cos(th))))
     length = float(np.sum(np.hypot(*np.diff(poses[:, :2], axis=0).T)))
     print("%d scans, %d wall segments, path %.0f m: %s.log.gz, %s.reference.txt.gz"

@@ -84,6 +84,43 @@ class SimCampus(unittest.TestCase):
         self.assertGreater(fair, 1.0)  # 0.001 rad per metre over 1.6 km, worth correcting
         self.assertGreater(harsh, 3.0 * fair)
 
+    def test_a_full_turn_laser_writes_robotlaser_lines_of_the_same_tour(self):
+        prefix = os.path.join(self.dir.name, "wide")
+        subprocess.run([sys.executable, SCRIPT, prefix, "--seed", "3", "--fov", "360"],
+                       check=True, capture_output=True)
+        scans, odo = [], []
+        with gzip.open(prefix + ".log.gz", "rt") as f:
+            for line in f:
+                s = line.split()
+                self.assertEqual(s[0], "ROBOTLASER1")
+                n = int(s[8])
+                self.assertEqual(len(s), n + 24)  # no remissions
+                self.assertAlmostEqual(float(s[2]), -math.pi, places=5)  # first bearing
+                self.assertAlmostEqual(float(s[3]), 2 * math.pi, places=5)  # field of view
+                self.assertAlmostEqual(float(s[4]), math.radians(1), places=5)  # beam spacing
+                scans.append([float(v) for v in s[9:9 + n]])
+                o = 10 + n
+                self.assertEqual(s[o:o + 3], s[o + 3:o + 6])  # the laser at the robot
+                odo.append([float(v) for v in s[o + 3:o + 6]])
+        fair_scans, fair_odo, _, fair_ref = self.out["fair"]
+        self.assertTrue(all(len(s) == 360 for s in scans))
+        # The same tour and odometry; only the range noise is drawn anew.
+        self.assertEqual(odo, fair_odo)
+        with gzip.open(prefix + ".reference.txt.gz", "rt") as f:
+            self.assertEqual([[float(v) for v in line.split()] for line in f], fair_ref)
+        # Beams at bearings -90..90 degrees are the 180 degree log's.
+        agree = total = 0
+        for wide, front in zip(scans[::10], fair_scans[::10]):
+            for k in range(181):
+                a, b = wide[90 + k], front[k]
+                if a < 81 and b < 81:
+                    total += 1
+                    agree += abs(a - b) < 0.15
+        self.assertGreater(agree, 0.99 * total)
+        # And the other half sees what a forward laser cannot.
+        behind = [v for s in scans for v in s[:90] + s[271:] if v < 81]
+        self.assertGreater(len(behind), 0.2 * len(scans) * 180)
+
     def test_the_same_seed_writes_the_same_log(self):
         prefix = os.path.join(self.dir.name, "again")
         subprocess.run([sys.executable, SCRIPT, prefix, "--seed", "3"], check=True, capture_output=True)
