@@ -4,15 +4,17 @@ not test: a campus of 5 x 4 blocks (80 x 60 m, streets 16 m wide) with one
 to three buildings per block set back from the street, lawns between them,
 and trees along the kerbs; a robot drives a 1.6 km tour along the streets
 with two loops (it comes back along its first street at the end), one scan
-per metre or so, a 180 degree laser of 181 beams (or, with --fov 360, a full turn of 360) reaching 80 m (no return
-written as 81.91, as CARMEN logs do), range noise 2 cm.
+per metre or so, a 180 degree laser of 181 beams (--fov 360: a full turn of
+360) reaching 80 m (no return written as 81.91, as CARMEN logs do), range
+noise 2 cm.
 
 Odometry: each step's motion with its translation scaled by 1 + s + noise
 (s = 1 % fair, 2 % harsh), lateral noise, heading noise, and a heading drift
 of 0.001 (fair) or 0.004 (harsh) rad per metre.
 
-Outputs OUT.log.gz (CARMEN FLASER lines) and OUT.reference.txt.gz (the true
-poses, "t x y theta" per scan, for scripts/ate.py).
+Outputs OUT.log.gz (CARMEN FLASER lines; ROBOTLASER1 with --fov 360) and
+OUT.reference.txt.gz (the true poses, "t x y theta" per scan, for
+scripts/ate.py).
 
 Usage: sim_campus.py OUT [--seed N] [--odometry fair|harsh] [--fov 180|360]
 """

@@ -102,6 +102,33 @@ int root_level(const SearchLattice& l, int levels) {
 
 namespace {
 
+// The bounding box {x0, y0, x1, y1} of n points' cells.
+using CellBox = std::array<int, 4>;
+CellBox box_of(const int* cx, const int* cy, size_t n) {
+  CellBox b = {cx[0], cy[0], cx[0], cy[0]};
+  for (size_t k = 1; k < n; ++k) {
+    b[0] = std::min(b[0], cx[k]);
+    b[1] = std::min(b[1], cy[k]);
+    b[2] = std::max(b[2], cx[k]);
+    b[3] = std::max(b[3], cy[k]);
+  }
+  return b;
+}
+
+// The points' cells' box at every heading of `l`, t = -nt..nt.
+std::vector<CellBox> heading_boxes(const SearchLattice& l, const std::vector<Point2D>& pts) {
+  std::vector<int> cx(pts.size()), cy(pts.size());
+  std::vector<CellBox> boxes;
+  for (int t = -l.nt; t <= l.nt; ++t) {
+    l.cells(pts, t, cx.data(), cy.data());
+    boxes.push_back(box_of(cx.data(), cy.data(), pts.size()));
+  }
+  return boxes;
+}
+
+int64_t floor_div(int64_t a, int64_t d) { return a >= 0 ? a / d : -((-a + d - 1) / d); }
+int64_t ceil_div(int64_t a, int64_t d) { return -floor_div(-a, d); }
+
 // The number of root blocks [-n + k b, -n + (k + 1) b - 1] (k >= 0, starts
 // at most n) whose start lies in [lo, hi].
 int64_t starts_within(int n, int b, int64_t lo, int64_t hi) {
@@ -113,36 +140,44 @@ int64_t starts_within(int n, int b, int64_t lo, int64_t hi) {
   return std::max<int64_t>(0, k1 - k0 + 1);
 }
 
-}  // namespace
-
+// roots_on_map() with the points' box at heading t given as
+// boxes[t + boxes_nt] (a lattice of the same centre and steps, at least as
+// wide: its headings include l's).
 int64_t roots_on_map(const CostStack& stack, const SearchLattice& l,
-                     const std::vector<Point2D>& pts) {
+                     const std::vector<CellBox>& boxes, int boxes_nt) {
   const int top = root_level(l, stack.levels());
   int rx0, ry0, rx1, ry1;
-  if (pts.empty() || !stack.raster(top, &rx0, &ry0, &rx1, &ry1)) return 0;
+  if (!stack.raster(top, &rx0, &ry0, &rx1, &ry1)) return 0;
   const int s = l.step_cells, b = 1 << top;
-  std::vector<int> cx(pts.size()), cy(pts.size());
   int64_t n = 0;
   for (int t = -l.nt; t <= l.nt; ++t) {
-    l.cells(pts, t, cx.data(), cy.data());
-    const auto [x0, x1] = std::minmax_element(cx.begin(), cx.end());
-    const auto [y0, y1] = std::minmax_element(cy.begin(), cy.end());
+    const CellBox& p = boxes[static_cast<size_t>(t + boxes_nt)];
     // A root at (i, j) is on the map when the points' box moved by (i s,
     // j s) meets the raster (bnb_modes' test for its first pose).
-    auto floor_div = [](int64_t a, int64_t d) { return a >= 0 ? a / d : -((-a + d - 1) / d); };
-    auto ceil_div = [&](int64_t a, int64_t d) { return -floor_div(-a, d); };
-    n += starts_within(l.nx, b, ceil_div(rx0 - *x1, s), floor_div(rx1 - *x0, s)) *
-         starts_within(l.ny, b, ceil_div(ry0 - *y1, s), floor_div(ry1 - *y0, s));
+    n += starts_within(l.nx, b, ceil_div(rx0 - p[2], s), floor_div(rx1 - p[0], s)) *
+         starts_within(l.ny, b, ceil_div(ry0 - p[3], s), floor_div(ry1 - p[1], s));
   }
   return n;
 }
 
+}  // namespace
+
+int64_t roots_on_map(const CostStack& stack, const SearchLattice& l,
+                     const std::vector<Point2D>& pts) {
+  if (pts.empty()) return 0;
+  return roots_on_map(stack, l, heading_boxes(l, pts), l.nt);
+}
+
 SearchLattice budget_lattice(const CostStack& stack, const SearchLattice& lattice,
                              const std::vector<Point2D>& pts, int64_t max_roots) {
+  if (pts.empty()) return lattice;
+  // A narrower gate keeps the headings' indices: the boxes are computed once.
+  const std::vector<CellBox> boxes = heading_boxes(lattice, pts);
   SearchLattice l = lattice;
   const Eigen::Matrix3d cov = lattice.information.inverse();
   // Ends: at a radius of a millionth the box is one pose.
-  while (roots_on_map(stack, l, pts) > max_roots && l.gate > 1e-6) set_gate(&l, 0.8 * l.gate, cov);
+  while (roots_on_map(stack, l, boxes, lattice.nt) > max_roots && l.gate > 1e-6)
+    set_gate(&l, 0.8 * l.gate, cov);
   return l;
 }
 
@@ -205,17 +240,8 @@ std::vector<SearchMode> bnb_modes(const CostStack& stack, const SearchLattice& l
   // The points' cells' bounding box at each heading: a block that puts
   // every point outside the stack's raster costs the maximum for each, with
   // no lookup (the window is often much larger than the area's map).
-  std::vector<std::array<int, 4>> box(static_cast<size_t>(nth));
-  for (size_t a = 0; a < box.size(); ++a) {
-    const size_t o = a * n;
-    box[a] = {cx[o], cy[o], cx[o], cy[o]};
-    for (size_t k = o; k < o + n; ++k) {
-      box[a][0] = std::min(box[a][0], cx[k]);
-      box[a][1] = std::min(box[a][1], cy[k]);
-      box[a][2] = std::max(box[a][2], cx[k]);
-      box[a][3] = std::max(box[a][3], cy[k]);
-    }
-  }
+  std::vector<CellBox> box(static_cast<size_t>(nth));
+  for (size_t a = 0; a < box.size(); ++a) box[a] = box_of(cx.data() + a * n, cy.data() + a * n, n);
   std::vector<std::array<int, 4>> raster(static_cast<size_t>(stack.levels()));
   std::vector<char> has_raster(raster.size());
   for (int k = 0; k < stack.levels(); ++k)
@@ -230,7 +256,7 @@ std::vector<SearchMode> bnb_modes(const CostStack& stack, const SearchLattice& l
   // Whether a block puts every point outside the stack's raster (its bound
   // is then all_far, with no lookup).
   auto off_raster = [&](int level, int t, int i, int j) {
-    const std::array<int, 4>& b = box[static_cast<size_t>(t + l.nt)];
+    const CellBox& b = box[static_cast<size_t>(t + l.nt)];
     const std::array<int, 4>& r = raster[static_cast<size_t>(level)];
     const int dx = i * s, dy = j * s;
     return !has_raster[static_cast<size_t>(level)] || b[2] + dx < r[0] || b[0] + dx > r[2] ||

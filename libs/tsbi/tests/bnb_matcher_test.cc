@@ -215,11 +215,7 @@ TEST(BudgetLattice, IsTheGateLatticeWhereItsRootsFitTheBudget) {
   // Narrowed as far as the budget needs, about the same mean, and no further.
   const SearchLattice narrow = budget_lattice(s.stack, full, s.pts, roots / 10);
   EXPECT_LE(roots_on_map(s.stack, narrow, s.pts), roots / 10);
-  SearchLattice wider = narrow;
-  wider.gate = narrow.gate / 0.8;
-  wider.nx = static_cast<int>(std::sqrt(wider.gate) * 40.0 / 0.05);
-  wider.ny = wider.nx;
-  wider.nt = static_cast<int>(std::min(M_PI, std::sqrt(wider.gate) * 0.7) / 0.01);
+  const SearchLattice wider = gate_lattice(s.prior, narrow.gate / 0.8, 0.05, 0.01, 0.05);
   EXPECT_GT(roots_on_map(s.stack, wider, s.pts), roots / 10);
   EXPECT_LT(narrow.gate, full.gate);
   EXPECT_EQ(narrow.center.x, full.center.x);
