@@ -228,23 +228,76 @@ void HybridFilter::apply_event(const area::AreaDecision& decision,
   ++stats_.new_area_events;
   std::vector<Hypothesis> parents;
   parents.swap(hyps_);
-  for (Hypothesis& parent : parents) {
-    size_t k = 0;
-    while (k < inputs.size() && inputs[k].hypothesis != parent.id) ++k;
-    if (k == inputs.size()) {  // born after the snapshot: nothing to decide
-      hyps_.push_back(std::move(parent));
+  // The input (and results) of each parent, if it has one: a hypothesis
+  // born after the snapshot has nothing to decide.
+  std::vector<size_t> input_of(parents.size(), 0);
+  for (size_t i = 0; i < parents.size(); ++i)
+    while (input_of[i] < inputs.size() && inputs[input_of[i]].hypothesis != parents[i].id)
+      ++input_of[i];
+  // Pruning is decided before any child is built, on the log weights of
+  // every hypothesis the event leaves (in the order they would hold), so
+  // that children it would drop at once are never built: each child copies
+  // its parent's particles and loads its area's map into every one of them,
+  // and an event of two hypotheses with five look-alike areas each built ten
+  // sets of particles to keep four (the soak's late laps). What is kept,
+  // and every weight, are the same as building them all and then pruning.
+  std::vector<double> log_weights;
+  std::vector<Followed> followed(parents.size());
+  for (size_t i = 0; i < parents.size(); ++i) {
+    if (input_of[i] == inputs.size()) {
+      log_weights.push_back(parents[i].topo.log_weight);
       continue;
     }
-    std::vector<Hypothesis> children = branch(std::move(parent), decision, inputs[k], outcomes[k]);
+    followed[i] = follow_outcomes(parents[i], outcomes[input_of[i]]);
+    log_weights.insert(log_weights.end(), followed[i].log_weights.begin(),
+                       followed[i].log_weights.end());
+  }
+  std::vector<double> log_p;
+  const std::vector<char> keep = survivors(log_weights, &log_p);
+  size_t slot = 0;
+  for (size_t i = 0; i < parents.size(); ++i) {
+    Hypothesis& parent = parents[i];
+    if (input_of[i] == inputs.size()) {
+      if (keep[slot]) {
+        parent.topo.log_weight = log_p[slot];
+        hyps_.push_back(std::move(parent));
+      }
+      ++slot;
+      continue;
+    }
+    std::vector<std::optional<double>> child_log_p;
+    for (size_t j = 0; j < followed[i].outcomes.size(); ++j, ++slot)
+      child_log_p.push_back(keep[slot] ? std::optional<double>(log_p[slot]) : std::nullopt);
+    const size_t k = input_of[i];
+    std::vector<Hypothesis> children =
+        branch(std::move(parent), decision, inputs[k], outcomes[k], followed[i].outcomes, child_log_p);
     for (auto& c : children) hyps_.push_back(std::move(c));
   }
-  normalise_and_prune();
+  settle();
+}
+
+HybridFilter::Followed HybridFilter::follow_outcomes(
+    const Hypothesis& parent, const std::vector<tsbi::Outcome>& outcomes) const {
+  // Outcomes too improbable to follow get no child; the others share the
+  // parent's weight in proportion.
+  Followed f;
+  f.outcomes = tsbi::probable_outcomes(outcomes, opt_.tsbi.min_probability);
+  double followed = 0.0;
+  for (size_t k : f.outcomes) followed += outcomes[k].probability;
+  const double evidence =
+      opt_.hybrid.event_evidence ? tsbi::log_evidence(outcomes, opt_.tsbi.log_eta) : 0.0;
+  for (size_t k : f.outcomes)
+    f.log_weights.push_back(parent.topo.log_weight +
+                            (std::log(outcomes[k].probability / followed) + evidence));
+  return f;
 }
 
 std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
                                              const area::AreaDecision& decision,
                                              const EventInput& input,
-                                             const std::vector<tsbi::Outcome>& outcomes) {
+                                             const std::vector<tsbi::Outcome>& outcomes,
+                                             const std::vector<size_t>& follow,
+                                             const std::vector<std::optional<double>>& log_p) {
   const AreaId c = parent.current_area();
   const metric_slam::GridRbpf& f = parent.filter;
   const size_t best = f.best_index();
@@ -291,25 +344,31 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
   // place the robot as it was then).
   const Pose2D aam_then = parent.aam_from_area + robot.mean;
 
-  // Outcomes too improbable to follow get no child; the others share the
-  // parent's weight in proportion.
-  const std::vector<size_t> follow = tsbi::probable_outcomes(ev.outcomes, opt_.tsbi.min_probability);
-  double followed = 0.0;
-  for (size_t k : follow) followed += ev.outcomes[k].probability;
-  const double evidence =
-      opt_.hybrid.event_evidence ? tsbi::log_evidence(ev.outcomes, opt_.tsbi.log_eta) : 0.0;
   ev.children.assign(ev.outcomes.size(), kNoChild);
   ev.entered.assign(ev.outcomes.size(), topology::kNoArea);
+  // The id a new area gets, read before the parent moves into a child.
+  const AreaId next_area = parent.map.next_area_id();
+  size_t last_built = follow.size();
+  for (size_t fi = 0; fi < follow.size(); ++fi)
+    if (log_p[fi]) last_built = fi;
   std::vector<Hypothesis> children;
   for (size_t fi = 0; fi < follow.size(); ++fi) {
     const size_t k = follow[fi];
     const tsbi::Outcome& o = ev.outcomes[k];
-    // The last outcome takes the parent itself; the others copy it (maps and
-    // area tables are shared copy-on-write).
-    Hypothesis child = fi + 1 == follow.size() ? std::move(parent) : parent;
-    child.id = next_hypothesis_id_++;
+    // Every followed outcome takes an id (the random streams derive from
+    // it), built or not: the events list the children pruning dropped.
+    const uint32_t id = next_hypothesis_id_++;
+    ev.children[k] = id;
+    if (!log_p[fi]) {
+      ev.entered[k] = o.is_new() ? next_area : o.area;
+      continue;
+    }
+    // The last child built takes the parent itself; the others copy it
+    // (maps and area tables are shared copy-on-write).
+    Hypothesis child = fi == last_built ? std::move(parent) : parent;
+    child.id = id;
     child.filter.reseed(mix_seed(opt_.rbpf.seed ^ mix_seed(child.id)));
-    child.topo.log_weight += std::log(o.probability / followed) + evidence;
+    child.topo.log_weight = *log_p[fi];
     child.area_start_step = step_;
     AreaId entered;
     if (o.is_new()) {
@@ -395,25 +454,43 @@ std::map<AreaId, double> HybridFilter::position_pmf() const {
   return topology::position_pmf(t);
 }
 
-void HybridFilter::normalise_and_prune() {
-  // Keep the log weights near zero (normalised) so they never lose precision.
-  std::vector<double> p = probabilities();
-  for (size_t i = 0; i < hyps_.size(); ++i) hyps_[i].topo.log_weight = std::log(p[i]);
-  std::vector<size_t> order(hyps_.size());
+std::vector<char> HybridFilter::survivors(const std::vector<double>& log_weights,
+                                          std::vector<double>* log_p) const {
+  // Normalised, so the kept weights stay near zero and never lose precision.
+  const double z = log_sum_exp(log_weights);
+  std::vector<double> p;
+  for (double x : log_weights) p.push_back(std::exp(x - z));
+  log_p->clear();
+  for (double x : p) log_p->push_back(std::log(x));
+  std::vector<size_t> order(p.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(),
                    [&](size_t a, size_t b) { return p[a] > p[b]; });
-  std::vector<char> keep(hyps_.size(), 0);
+  std::vector<char> keep(p.size(), 0);
   for (size_t r = 0; r < order.size(); ++r)
     keep[order[r]] = r == 0 || (p[order[r]] >= opt_.hybrid.prune_probability &&
                                 r < static_cast<size_t>(opt_.hybrid.max_hypotheses));
+  return keep;
+}
+
+void HybridFilter::normalise_and_prune() {
+  std::vector<double> lw, log_p;
+  for (const auto& h : hyps_) lw.push_back(h.topo.log_weight);
+  const std::vector<char> keep = survivors(lw, &log_p);
   std::vector<Hypothesis> kept;
   for (size_t i = 0; i < hyps_.size(); ++i)
-    if (keep[i]) kept.push_back(std::move(hyps_[i]));
+    if (keep[i]) {
+      hyps_[i].topo.log_weight = log_p[i];
+      kept.push_back(std::move(hyps_[i]));
+    }
   hyps_ = std::move(kept);
+  settle();
+}
+
+void HybridFilter::settle() {
   std::sort(hyps_.begin(), hyps_.end(),
             [](const Hypothesis& a, const Hypothesis& b) { return a.id < b.id; });
-  p = probabilities();
+  const std::vector<double> p = probabilities();
   for (size_t i = 0; i < hyps_.size(); ++i) hyps_[i].topo.log_weight = std::log(p[i]);
   stats_.max_hypotheses_alive = std::max(stats_.max_hypotheses_alive, hyps_.size());
   share_particles(p);

@@ -129,6 +129,73 @@ TEST(HybridFilter, EventEvidenceWeighsTheHypotheses) {
   EXPECT_NEAR(off[1], 0.5, 1e-9);
 }
 
+// Two equally probable hypotheses meet an event of three outcomes each
+// (an unexplored area, known areas x and y) with at most three hypotheses
+// kept. The children pruning drops are never built, yet what is left is
+// what building all six and pruning gives: the three most probable, with
+// their weights renormalised, and the event lists every child's id.
+TEST(HybridFilter, AnEventBuildsOnlyTheChildrenPruningKeeps) {
+  const auto run = testing_ring::ring_run(7);
+  topology::Session s = saved_after(run, 100);
+  const topology::AreaId current = s.hypotheses[0].topo.current_area();
+  std::vector<topology::AreaId> known;
+  for (topology::AreaId a : s.hypotheses[0].map.area_ids())
+    if (a != current) known.push_back(a);
+  ASSERT_GE(known.size(), 2u);
+  s.hypotheses.push_back(s.hypotheses[0]);
+  s.hypotheses[1].id = s.hypotheses[0].id + 1;
+  s.hypotheses[0].topo.log_weight = s.hypotheses[1].topo.log_weight = std::log(0.5);
+  HmtOptions o = ring_options();
+  o.hybrid.event_evidence = false;
+  o.hybrid.max_hypotheses = 3;
+  o.hybrid.prune_probability = 0.001;
+  o.tsbi.min_probability = 0.001;
+  HybridFilter f(o);
+  f.resume(s);
+  ASSERT_EQ(f.hypotheses().size(), 2u);
+  area::AreaDecision d;
+  d.new_area = true;
+  const std::vector<EventInput> in = f.prepare_event(d);
+  ASSERT_EQ(in.size(), 2u);
+  // Children's probabilities: 0.05, 0.30, 0.15 and 0.025, 0.075, 0.40.
+  const double p[2][3] = {{0.1, 0.6, 0.3}, {0.05, 0.15, 0.8}};
+  std::vector<std::vector<tsbi::Outcome>> outcomes(2, std::vector<tsbi::Outcome>(3));
+  for (size_t k = 0; k < 2; ++k)
+    for (size_t j = 0; j < 3; ++j) {
+      outcomes[k][j].area = j == 0 ? topology::kNoArea : known[j - 1];
+      outcomes[k][j].probability = p[k][j];
+      outcomes[k][j].log_f = o.tsbi.log_eta + std::log(p[k][j] / p[k][0]);
+    }
+  const uint32_t first_child = f.hypotheses()[1].id + 1;
+  f.apply_event(d, in, outcomes);
+  // Kept: the first parent's children in x and y, the second's in y.
+  ASSERT_EQ(f.hypotheses().size(), 3u);
+  const uint32_t ids[3] = {first_child + 1, first_child + 2, first_child + 5};
+  const topology::AreaId areas[3] = {known[0], known[1], known[1]};
+  const double probs[3] = {0.30 / 0.85, 0.15 / 0.85, 0.40 / 0.85};
+  const std::vector<double> got = f.probabilities();
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(f.hypotheses()[i].id, ids[i]);
+    EXPECT_EQ(f.hypotheses()[i].current_area(), areas[i]);
+    EXPECT_NEAR(got[i], probs[i], 1e-12);
+    EXPECT_FALSE(f.hypotheses()[i].filter.particles().empty());
+  }
+  // Both events list all three children, the dropped ones included.
+  const std::vector<TransitionEvent>& ev = f.transitions();
+  ASSERT_GE(ev.size(), 2u);
+  for (size_t k = 0; k < 2; ++k) {
+    const TransitionEvent& e = ev[ev.size() - 2 + k];
+    ASSERT_EQ(e.children.size(), 3u);
+    for (size_t j = 0; j < 3; ++j) EXPECT_EQ(e.children[j], first_child + 3 * k + j);
+    EXPECT_EQ(e.entered[1], known[0]);
+    EXPECT_EQ(e.entered[2], known[1]);
+    EXPECT_NE(e.entered[0], topology::kNoArea);
+  }
+  // The run goes on from there.
+  for (size_t i = 100; i < 110; ++i) f.process(run.log.steps[i]);
+  EXPECT_LE(f.hypotheses().size(), 3u);
+}
+
 TEST(HybridFilter, HypothesesShareTheParticleBudgetWhenAsked) {
   // Two rival topologies of probability 0.9 and 0.1: the state of a run
   // resumed with min_particles 3 (of 10).

@@ -245,10 +245,31 @@ class HybridFilter {
   };
   void start(const LogStep& step);
   std::optional<area::Keyframe> keyframe_due(const LogStep& step);
+  // The outcomes of an event a hypothesis follows, and the log weight of
+  // the child each would get.
+  struct Followed {
+    std::vector<size_t> outcomes;  // indices into the event's outcomes
+    std::vector<double> log_weights;
+  };
+  Followed follow_outcomes(const Hypothesis& parent,
+                           const std::vector<tsbi::Outcome>& outcomes) const;
+  // The children of `parent` for the followed outcomes `follow`: those with
+  // a log probability in `log_p` (the ones pruning keeps) are built with it.
   std::vector<Hypothesis> branch(Hypothesis parent, const area::AreaDecision& decision,
                                  const EventInput& input,
-                                 const std::vector<tsbi::Outcome>& outcomes);
+                                 const std::vector<tsbi::Outcome>& outcomes,
+                                 const std::vector<size_t>& follow,
+                                 const std::vector<std::optional<double>>& log_p);
+  // Which hypotheses of these log weights pruning keeps (the most probable
+  // always; the others at least prune_probability and among the
+  // max_hypotheses most probable), and each one's log probability among
+  // them all.
+  std::vector<char> survivors(const std::vector<double>& log_weights,
+                              std::vector<double>* log_p) const;
   void normalise_and_prune();
+  // After pruning: id order, the weights normalised over what is left, the
+  // particles shared out.
+  void settle();
   void share_particles(const std::vector<double>& probabilities);
   void forget_shared_history();
   // When no hypothesis dominates but the closures the most probable one
