@@ -21,7 +21,8 @@
 //     gamma's stored map at poses drawn from the match posterior; the arc
 //     to gamma gets that measurement.
 //  4. Hypotheses under prune_probability are dropped; at most max_hypotheses
-//     are kept.
+//     are kept. At an event this is decided on the children's weights
+//     before they are built, so a child pruning drops is never built.
 //  5. Loop-closure acceptance (TLCA): when one hypothesis dominates (policy
 //     in tlca::TlcaOptions) the others are dropped, its loop closures are
 //     fine-aligned and fused into the arcs, and the shared topological
