@@ -269,8 +269,8 @@ void HybridFilter::apply_event(const area::AreaDecision& decision,
     for (size_t j = 0; j < followed[i].outcomes.size(); ++j, ++slot)
       child_log_p.push_back(keep[slot] ? std::optional<double>(log_p[slot]) : std::nullopt);
     const size_t k = input_of[i];
-    std::vector<Hypothesis> children =
-        branch(std::move(parent), decision, inputs[k], outcomes[k], followed[i].outcomes, child_log_p);
+    std::vector<Hypothesis> children = branch(std::move(parent), decision, inputs[k],
+                                              outcomes[k], followed[i].outcomes, child_log_p);
     for (auto& c : children) hyps_.push_back(std::move(c));
   }
   settle();
