@@ -427,9 +427,7 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
 std::vector<double> HybridFilter::probabilities() const {
   std::vector<double> lw;
   for (const auto& h : hyps_) lw.push_back(h.topo.log_weight);
-  const double z = log_sum_exp(lw);
-  for (double& x : lw) x = std::exp(x - z);
-  return lw;
+  return normalised_exp(std::move(lw));
 }
 
 void HybridFilter::keep_most_probable() {
@@ -457,9 +455,7 @@ std::map<AreaId, double> HybridFilter::position_pmf() const {
 std::vector<char> HybridFilter::survivors(const std::vector<double>& log_weights,
                                           std::vector<double>* log_p) const {
   // Normalised, so the kept weights stay near zero and never lose precision.
-  const double z = log_sum_exp(log_weights);
-  std::vector<double> p;
-  for (double x : log_weights) p.push_back(std::exp(x - z));
+  const std::vector<double> p = normalised_exp(log_weights);
   log_p->clear();
   for (double x : p) log_p->push_back(std::log(x));
   std::vector<size_t> order(p.size());

@@ -287,9 +287,7 @@ void GridRbpf::end_step() {
 std::vector<double> GridRbpf::weights() const {
   std::vector<double> lw(particles_.size());
   for (size_t i = 0; i < particles_.size(); ++i) lw[i] = particles_[i].log_weight;
-  const double z = log_sum_exp(lw);
-  for (double& w : lw) w = std::exp(w - z);
-  return lw;
+  return normalised_exp(std::move(lw));
 }
 
 double GridRbpf::ess() const {
