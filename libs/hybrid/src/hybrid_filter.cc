@@ -177,6 +177,19 @@ std::optional<area::Keyframe> HybridFilter::keyframe_due(const LogStep& step) {
   return kf;
 }
 
+std::vector<std::pair<size_t, const HybridFilter::KeyframeRecord*>>
+HybridFilter::keyframes_in_path(const area::AreaDecision& decision, uint64_t area_start_step,
+                                size_t path_size) const {
+  std::vector<std::pair<size_t, const KeyframeRecord*>> out;
+  for (int k : decision.new_area_keyframes) {
+    const KeyframeRecord& kf = keyframes_[static_cast<size_t>(k)];
+    if (kf.step < area_start_step) continue;
+    const size_t idx = static_cast<size_t>(kf.step - area_start_step);
+    if (idx < path_size) out.emplace_back(idx, &kf);
+  }
+  return out;
+}
+
 std::vector<EventInput> HybridFilter::prepare_event(const area::AreaDecision& decision) const {
   const std::vector<double> p = probabilities();
   std::vector<EventInput> inputs;
@@ -200,13 +213,9 @@ std::vector<EventInput> HybridFilter::prepare_event(const area::AreaDecision& de
     // The latest observations: the new area's keyframes seen from the best
     // particle's path (those taken in this area; earlier ones are in no path).
     std::vector<tsbi::PosedScan> posed;
-    for (int k : decision.new_area_keyframes) {
-      const KeyframeRecord& kf = keyframes_[static_cast<size_t>(k)];
-      if (kf.step < h.area_start_step) continue;
-      const size_t idx = static_cast<size_t>(kf.step - h.area_start_step);
-      if (idx >= bp.path.size()) continue;
-      posed.push_back({bp.path[idx], kf.scan.get()});
-      in.scans.push_back(kf.scan);
+    for (const auto& [idx, kf] : keyframes_in_path(decision, h.area_start_step, bp.path.size())) {
+      posed.push_back({bp.path[idx], kf->scan.get()});
+      in.scans.push_back(kf->scan);
     }
     const auto& ro = opt_.rbpf;
     in.observations = tsbi::gather_observations(posed, now, ro.matcher.max_range, ro.resolution,
@@ -309,13 +318,8 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
 
   // The new area's keyframes, to seed a fresh map with.
   std::vector<metric_slam::SeedScan> seeds;
-  for (int k : decision.new_area_keyframes) {
-    const KeyframeRecord& kf = keyframes_[static_cast<size_t>(k)];
-    if (kf.step < parent.area_start_step) continue;
-    const size_t idx = static_cast<size_t>(kf.step - parent.area_start_step);
-    if (idx >= bp.path.size()) continue;
-    seeds.push_back({idx, kf.scan.get()});
-  }
+  for (const auto& [idx, kf] : keyframes_in_path(decision, parent.area_start_step, bp.path.size()))
+    seeds.push_back({idx, kf->scan.get()});
 
   TransitionEvent ev;
   ev.step = input.step;

@@ -46,6 +46,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "hmt/area/online_partitioner.h"
@@ -246,6 +247,11 @@ class HybridFilter {
   };
   void start(const LogStep& step);
   std::optional<area::Keyframe> keyframe_due(const LogStep& step);
+  // The new area's keyframes that a path begun at `area_start_step`, of
+  // `path_size` poses, holds (earlier ones are in no path), each with its
+  // index in that path.
+  std::vector<std::pair<size_t, const KeyframeRecord*>> keyframes_in_path(
+      const area::AreaDecision& decision, uint64_t area_start_step, size_t path_size) const;
   // The outcomes of an event a hypothesis follows, and the log weight of
   // the child each would get.
   struct Followed {
