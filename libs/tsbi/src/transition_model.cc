@@ -573,8 +573,8 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
     if (candidate[i]) outcomes.push_back(std::move(areas[i]));
   std::vector<double> lf;
   for (const Outcome& o : outcomes) lf.push_back(o.log_f);
-  const double z = log_sum_exp(lf);
-  for (Outcome& o : outcomes) o.probability = std::exp(o.log_f - z);
+  const std::vector<double> p = normalised_exp(std::move(lf));
+  for (size_t i = 0; i < outcomes.size(); ++i) outcomes[i].probability = p[i];
   return outcomes;
 }
 
