@@ -18,6 +18,12 @@ namespace {
 using topology::AreaId;
 using topology::PoseGaussian;
 
+// The variances the prior's floors add (TsbiOptions::prior_std_*).
+Eigen::Vector3d prior_floor(const TsbiOptions& o) {
+  return Eigen::Vector3d(o.prior_std_xy * o.prior_std_xy, o.prior_std_xy * o.prior_std_xy,
+                         o.prior_std_theta * o.prior_std_theta);
+}
+
 // The match starts: the prior mean and the lattice {-k, 0, k}^3 along the
 // prior's principal axes (whitened by its Cholesky factor).
 std::vector<Pose2D> match_starts(const PoseGaussian& prior, double k) {
@@ -244,9 +250,7 @@ TransitionModel::Search TransitionModel::prepare_search(const grid::OccupancyGri
   // Log-likelihoods of the kept points stand for all the points.
   out.scale = observations.scale / gain_;
   out.prior = prior_in;
-  out.prior.cov.diagonal() += Eigen::Vector3d(opt_.prior_std_xy * opt_.prior_std_xy,
-                                              opt_.prior_std_xy * opt_.prior_std_xy,
-                                              opt_.prior_std_theta * opt_.prior_std_theta);
+  out.prior.cov.diagonal() += prior_floor(opt_);
   const PoseGaussian& prior = out.prior;
   // No mode can pass the ratio gate if no pose in the prior's gate lets
   // enough points reach an obstacle: not a candidate, as the matching
@@ -370,7 +374,7 @@ std::vector<Outcome> TransitionModel::reachable_areas(const topology::HmtMap& ma
     Outcome o;
     o.area = id;
     // The robot in gamma's frame: (-)Delta_{c,gamma} (+) robot.
-    o.prior = topology::relative(robot, tree.pose_of(id));
+    o.prior = topology::relative(robot, candidate_frame(map, tree, current, id, opt_));
     // Cheap reach test first: can observations from anywhere in the prior's
     // gate land on the area's map at all?
     grid::CellIndex lo, hi;
@@ -576,6 +580,20 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
   const std::vector<double> p = normalised_exp(std::move(lf));
   for (size_t i = 0; i < outcomes.size(); ++i) outcomes[i].probability = p[i];
   return outcomes;
+}
+
+topology::PoseGaussian candidate_frame(const topology::HmtMap& map,
+                                       const topology::PathTree& tree,
+                                       topology::AreaId current, topology::AreaId id,
+                                       const TsbiOptions& options) {
+  topology::PoseGaussian frame = tree.pose_of(id);
+  if (tree.nodes.at(id).parent == current || !map.has_arc(current, id)) return frame;
+  const topology::PoseGaussian direct = map.arc(current, id);
+  const Eigen::Vector3d d = topology::difference(direct.mean, frame.mean);
+  Eigen::Matrix3d S = frame.cov + direct.cov;
+  S.diagonal() += prior_floor(options);
+  if (d.dot(S.ldlt().solve(d)) > options.gate) frame.cov += d * d.transpose();
+  return frame;
 }
 
 double log_evidence(const std::vector<Outcome>& outcomes, double log_eta) {

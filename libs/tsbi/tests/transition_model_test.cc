@@ -6,7 +6,10 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
+#include <vector>
 
+#include "hmt/topology/shortest_paths.h"
 #include "test_maps.h"
 
 namespace hmt::tsbi {
@@ -139,6 +142,76 @@ TEST(TransitionModel, AnAreaBelowMinProbabilityAgainstEtaAloneIsNoOutcome) {
   const double edge = log_f1 - std::log(TsbiOptions{}.min_probability);  // log eta at the edge
   EXPECT_EQ(f_of_area_1(model(edge - 0.1).evaluate(s.map, 3, robot, obs)), log_f1);
   EXPECT_EQ(f_of_area_1(model(edge + 0.1).evaluate(s.map, 3, robot, obs)), -HUGE_VAL);
+}
+
+// The arcs 1-2 and 2-3 as fine alignments leave them: millimetres and a
+// milliradian, 1-2's heading 0.1 rad off. Dijkstra from area 3 prefers them
+// to a direct arc 1-3 of 5 cm and 0.02 rad that has it right.
+struct ContradictoryLoop : TwoKnownAreas {
+  explicit ContradictoryLoop(bool direct_arc) {
+    const Pose2D off(origin2.x, origin2.y, origin2.theta + 0.1);
+    map.set_arc({1, 2, PoseGaussian(off, diag(0.002, 0.001)), 1});
+    map.set_arc({2, 3, PoseGaussian(origin3 - origin2, diag(0.002, 0.001)), 1});
+    if (direct_arc) map.add_arc_measurement(1, 3, PoseGaussian(origin3, diag(0.05, 0.02)));
+  }
+};
+
+TEST(TransitionModel, APathThatContradictsTheAreasOwnArcStillFindsTheArea) {
+  const Pose2D truth(3, 3, 0.2);
+  const auto obs = observe(testing_sim::office_world(), {{2.0, 2.8, 0.2}, {2.5, 2.9, 0.2}, truth});
+  auto area_1 = [&](const ContradictoryLoop& s) {
+    const PoseGaussian robot(truth - s.origin3, diag(0.02, 0.005));
+    for (const Outcome& o : model().evaluate(s.map, 3, robot, obs))
+      if (o.area == 1) return std::optional<Outcome>(o);
+    return std::optional<Outcome>();
+  };
+  // Without the direct arc, the prior through area 2 places the robot
+  // 0.67 m and 0.1 rad off, and area 1 is missed.
+  const ContradictoryLoop path_only(false);
+  ASSERT_EQ(topology::shortest_paths(path_only.map, 3).path_to(1),
+            (std::vector<AreaId>{3, 2, 1}));
+  EXPECT_FALSE(area_1(path_only));
+  // With it, Dijkstra still takes the way through area 2, but the prior is
+  // widened to hold the direct arc too, and the return is found.
+  const ContradictoryLoop both(true);
+  const topology::PathTree tree = topology::shortest_paths(both.map, 3);
+  ASSERT_EQ(tree.path_to(1), (std::vector<AreaId>{3, 2, 1}));
+  const std::optional<Outcome> found = area_1(both);
+  ASSERT_TRUE(found) << "area 1 must be a candidate";
+  EXPECT_GT(found->probability, 0.99);
+  EXPECT_NEAR(found->robot.mean.x, truth.x, 0.03);
+  EXPECT_NEAR(found->robot.mean.y, truth.y, 0.03);
+  EXPECT_NEAR(found->robot.mean.theta, truth.theta, 0.01);
+}
+
+TEST(CandidateFrame, IsDijkstrasPoseUnlessThePathContradictsTheAreasOwnArc) {
+  const TsbiOptions o;
+  const ContradictoryLoop s(true);
+  const topology::PathTree tree = topology::shortest_paths(s.map, 3);
+  const PoseGaussian path = tree.pose_of(1);
+  const PoseGaussian direct = s.map.arc(3, 1);
+  // Widened by the disagreement, about the path's mean.
+  const PoseGaussian widened = candidate_frame(s.map, tree, 3, 1, o);
+  const Eigen::Vector3d d = topology::difference(direct.mean, path.mean);
+  EXPECT_EQ(widened.mean.x, path.mean.x);
+  EXPECT_EQ(widened.mean.y, path.mean.y);
+  EXPECT_EQ(widened.mean.theta, path.mean.theta);
+  EXPECT_TRUE(widened.cov.isApprox(path.cov + d * d.transpose(), 1e-12));
+  // Dijkstra's pose, bit for bit: where the path is the two areas' own arc
+  // (area 3 seen from area 2), where they share none (no arc 1-3), and
+  // where their arc agrees with the path (5 cm off, inside the gate).
+  const topology::PathTree from2 = topology::shortest_paths(s.map, 2);
+  EXPECT_EQ(candidate_frame(s.map, from2, 2, 3, o).cov, from2.pose_of(3).cov);
+  const ContradictoryLoop no_direct(false);
+  const topology::PathTree tree2 = topology::shortest_paths(no_direct.map, 3);
+  EXPECT_EQ(candidate_frame(no_direct.map, tree2, 3, 1, o).cov, tree2.pose_of(1).cov);
+  ContradictoryLoop agreeing(false);
+  agreeing.map.add_arc_measurement(
+      1, 3, PoseGaussian(topology::compose_path(agreeing.map, {1, 2, 3}).mean + Pose2D(0.05, 0, 0),
+                         diag(0.05, 0.02)));
+  const topology::PathTree tree3 = topology::shortest_paths(agreeing.map, 3);
+  ASSERT_EQ(tree3.path_to(1), (std::vector<AreaId>{3, 2, 1}));
+  EXPECT_EQ(candidate_frame(agreeing.map, tree3, 3, 1, o).cov, tree3.pose_of(1).cov);
 }
 
 TEST(TransitionModel, BroaderPriorLowersTheExpectedLikelihood) {

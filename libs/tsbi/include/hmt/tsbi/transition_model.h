@@ -10,6 +10,8 @@
 // over the prior of the robot pose in gamma's frame. The prior comes from the
 // arcs: the robot pose in the current area c composed with the Gaussians along
 // the Dijkstra path from gamma to c (Eq. 15, topology/shortest_paths.h).
+// Where c and gamma also share an arc of their own and the path contradicts
+// it, the prior is widened to hold both (candidate_frame() below).
 // The probabilities are eta and the F(gamma), normalised.
 //
 // How F is computed. p(z|x,m) is the likelihood field model the metric filter
@@ -76,6 +78,7 @@
 #include "hmt/common/worker_pool.h"
 #include "hmt/topology/hmt_map.h"
 #include "hmt/topology/pose_gaussian.h"
+#include "hmt/topology/shortest_paths.h"
 #include "hmt/tsbi/cost_stack.h"
 #include "hmt/tsbi/match_field.h"
 #include "hmt/tsbi/observations.h"
@@ -237,6 +240,26 @@ class TransitionModel {
   uint64_t stack_calls_ = 0;  // stack_for() calls, the stacks' `used` clock
   mutable std::mutex stacks_mutex_;
 };
+
+// Where area `id`'s frame lies seen from area `current`, as TSBI's prior
+// composes it: the pose `tree` (Dijkstra from `current`) gives it along the
+// most certain path. Where `current` and `id` also share an arc of their own
+// and that path is another way round, the two are checked against each
+// other: when the arc's mean lies outside the path's gate (options.gate, on
+// both covariances with the prior's floors prior_std_xy and
+// prior_std_theta), the arcs of that loop contradict each other, and the
+// covariance is widened by the disagreement d, cov + d d^T, as TLCA widens an
+// inconsistent closure (tlca/acceptance.h), so that the gate holds both.
+// Why: each loop arc is a fine alignment that claims millimetres and a
+// milliradian, and which of them is wrong is not known. On the Infinite
+// Corridor driven twice, three such arcs formed a loop 0.53 m off (0.018
+// rad over a 28 m arc); the second lap's prior, through the way round, put
+// the area where the first lap had matched it at 20 standard deviations, and
+// the lap made a new area there instead of returning.
+topology::PoseGaussian candidate_frame(const topology::HmtMap& map,
+                                       const topology::PathTree& tree,
+                                       topology::AreaId current, topology::AreaId id,
+                                       const TsbiOptions& options);
 
 // The evidence of an event, log(sum over the outcomes of F(gamma) / eta):
 // how much better the hypothesis's known areas explain the observations
