@@ -254,7 +254,7 @@ class TransitionModel {
 // milliradian, and which of them is wrong is not known. On the Infinite
 // Corridor driven twice, three such arcs formed a loop 0.53 m off (0.018
 // rad over a 28 m arc); the second lap's prior, through the way round, put
-// the area where the first lap had matched it at 20 standard deviations, and
+// the place where the first lap had matched the area outside the gate, and
 // the lap made a new area there instead of returning.
 topology::PoseGaussian candidate_frame(const topology::HmtMap& map,
                                        const topology::PathTree& tree,
