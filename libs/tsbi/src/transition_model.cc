@@ -380,10 +380,9 @@ std::vector<Outcome> TransitionModel::reachable_areas(const topology::HmtMap& ma
     grid::CellIndex lo, hi;
     if (!area_map->bounds(&lo, &hi)) continue;
     const double res = area_map->resolution();
-    const double reach = reach_ + std::sqrt(opt_.gate * std::max(o.prior.cov(0, 0) +
-                                                                 opt_.prior_std_xy * opt_.prior_std_xy,
-                                                                 o.prior.cov(1, 1) +
-                                                                 opt_.prior_std_xy * opt_.prior_std_xy));
+    const Eigen::Vector3d floor = prior_floor(opt_);
+    const double reach = reach_ + std::sqrt(opt_.gate * std::max(o.prior.cov(0, 0) + floor(0),
+                                                                 o.prior.cov(1, 1) + floor(1)));
     const double dx = std::max({lo.x * res - o.prior.mean.x, 0.0, o.prior.mean.x - (hi.x + 1) * res});
     const double dy = std::max({lo.y * res - o.prior.mean.y, 0.0, o.prior.mean.y - (hi.y + 1) * res});
     if (std::hypot(dx, dy) > reach) continue;
