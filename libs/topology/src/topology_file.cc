@@ -15,6 +15,7 @@
 
 #include "hmt/common/error.h"
 #include "hmt/common/files.h"
+#include "hmt/common/int_div.h"
 
 namespace hmt::topology {
 namespace {
@@ -39,10 +40,6 @@ constexpr int64_t kMaxTileGap = 128;
 constexpr int64_t kMaxSlotsPerTile = 4096;
 // Tile coordinates whose cell indices fit comfortably in an int.
 constexpr int32_t kMaxTileCoord = 1 << 25;
-
-int floor_div(int a, int b) {
-  return a / b - ((a % b != 0) && ((a < 0) != (b < 0)));
-}
 
 uint32_t crc_of(const char* data, size_t size) {
   return static_cast<uint32_t>(crc32_z(

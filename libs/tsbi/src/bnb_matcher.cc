@@ -8,6 +8,7 @@
 #include <queue>
 
 #include "hmt/common/error.h"
+#include "hmt/common/int_div.h"
 
 namespace hmt::tsbi {
 
@@ -125,9 +126,6 @@ std::vector<CellBox> heading_boxes(const SearchLattice& l, const std::vector<Poi
   }
   return boxes;
 }
-
-int64_t floor_div(int64_t a, int64_t d) { return a >= 0 ? a / d : -((-a + d - 1) / d); }
-int64_t ceil_div(int64_t a, int64_t d) { return -floor_div(-a, d); }
 
 // The number of root blocks [-n + k b, -n + (k + 1) b - 1] (k >= 0, starts
 // at most n) whose start lies in [lo, hi].
