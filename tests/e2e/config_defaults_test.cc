@@ -21,9 +21,6 @@ class ConfigDefaults : public ::testing::Test {
   void SetUp() override {
     dir_ = temp_dir(::testing::UnitTest::GetInstance()->current_test_info()->name());
   }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
   std::string dir_;
 };
 

@@ -92,9 +92,6 @@ class HostileInput : public ::testing::Test {
     dir_ = temp_dir(std::string("hostile_") +
                     ::testing::UnitTest::GetInstance()->current_test_info()->name());
   }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
 
   // hmt-slam run on `log` (written into the test's folder), bounded in time
   // (a hang fails: `timeout` exits 124) and, after `shell_prefix` (e.g. a

@@ -20,7 +20,6 @@
 
 namespace hmt::e2e {
 namespace {
-namespace fs = std::filesystem;
 
 struct Pgm {
   int width = 0, height = 0;
@@ -150,7 +149,6 @@ TEST(MrptMapsApp, MalagaMapsReadBackInMrpt) {
   ASSERT_EQ(again.exit_code, 0) << again.err;
   for (const char* f : {"map.gridmap.gz", "keyframes.simplemap"})
     EXPECT_EQ(slurp(out + "/" + f), slurp(dir + "/again/" + f)) << f;
-  fs::remove_all(dir);
 }
 
 // [global_map] method = areas: no keyframe graph; the keyframes are taken
@@ -171,7 +169,6 @@ TEST(MrptMapsApp, AreasMethodKeyframesFollowTheTrajectory) {
   const Pgm pgm = read_pgm(dir + "/out/map.pgm");
   EXPECT_EQ(static_cast<int>(grid.getSizeX()), pgm.width);
   EXPECT_EQ(static_cast<int>(grid.getSizeY()), pgm.height);
-  fs::remove_all(dir);
 }
 
 }  // namespace

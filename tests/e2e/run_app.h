@@ -9,6 +9,8 @@
 #include <sstream>
 #include <string>
 
+#include "hmt_test/scratch.h"
+
 namespace hmt::e2e {
 
 // Built with AddressSanitizer or ThreadSanitizer, whose runtimes change how
@@ -31,9 +33,10 @@ inline std::string slurp(const std::string& path) {
   return ss.str();
 }
 
+// A fresh folder for the running test, removed if it passes.
 inline std::string temp_dir(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() /
-                 ("hmt_e2e_" + name + "_" + std::to_string(::getpid()));
+  const auto d = scratch::track(std::filesystem::temp_directory_path() /
+                                ("hmt_e2e_" + name + "_" + std::to_string(::getpid())));
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
   return d.string();

@@ -14,6 +14,7 @@
 #include "../../hybrid/tests/ring_world.h"
 #include "hmt/common/error.h"
 #include "hmt/topology/topology_file.h"
+#include "hmt_test/scratch.h"
 
 namespace hmt::checkpoint {
 namespace {
@@ -27,9 +28,10 @@ framework::FrameworkOptions deterministic() {
   return o;
 }
 
+// A file removed if the test passes.
 std::string temp_path(const std::string& name) {
-  return (fs::temp_directory_path() /
-          ("hmt_checkpoint_" + name + "_" + std::to_string(::getpid()) + ".bin"))
+  return scratch::track(fs::temp_directory_path() /
+                        ("hmt_checkpoint_" + name + "_" + std::to_string(::getpid()) + ".bin"))
       .string();
 }
 
@@ -130,7 +132,6 @@ TEST(Checkpoint, AResumedRunEndsExactlyAsTheUninterruptedOne) {
     resumed.finish();
     EXPECT_EQ(fingerprint(resumed), expected);
   }
-  std::remove(path.c_str());
 }
 
 // Loading then saving gives the file back byte for byte: every member read
@@ -148,8 +149,6 @@ TEST(Checkpoint, ALoadedStateSavesToTheSameBytes) {
   const std::string bytes_a = slurp(a), bytes_b = slurp(b);
   EXPECT_EQ(bytes_a.size(), bytes_b.size());
   EXPECT_TRUE(bytes_a == bytes_b);
-  std::remove(a.c_str());
-  std::remove(b.c_str());
 }
 
 // Every damaged file is refused with an InputError that names the file and
@@ -193,8 +192,6 @@ TEST(Checkpoint, DamagedFilesAreRefusedByName) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("does not exist"), std::string::npos) << e.what();
   }
-  std::remove(good.c_str());
-  std::remove(bad.c_str());
 }
 
 // A checkpoint replaces the previous one atomically: a write that fails
@@ -206,11 +203,9 @@ TEST(Checkpoint, AFailedWriteLeavesTheEarlierCheckpoint) {
   const std::string before = slurp(path);
   // A folder in the temporary file's place makes the next write fail.
   const std::string blocker = path + ".tmp." + std::to_string(::getpid());
-  fs::create_directories(blocker);
+  fs::create_directories(scratch::track(blocker));
   EXPECT_THROW(run_and_save(run.log, 60, path), OutputError);
   EXPECT_EQ(slurp(path), before);
-  fs::remove_all(blocker);
-  std::remove(path.c_str());
 }
 
 TEST(Checkpoint, TheLogFingerprintSeesEveryPart) {

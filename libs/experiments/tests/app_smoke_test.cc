@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "hmt_test/scratch.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -29,9 +31,11 @@ std::vector<std::string> lines(const fs::path& p) {
   return out;
 }
 
+// The folder the test's run writes, removed if the test passes.
 fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("hmt_experiments_" + name + "_" +
-                                                  std::to_string(::getpid()));
+  const fs::path d = hmt::scratch::track(fs::temp_directory_path() /
+                                         ("hmt_experiments_" + name + "_" +
+                                          std::to_string(::getpid())));
   fs::remove_all(d);
   return d;
 }
@@ -59,7 +63,6 @@ TEST(experiments_App, InfoLossWithFewRuns) {
     EXPECT_GE(row["e"]["min"].get<double>(), 0.0);
     EXPECT_LT(row["e"]["max"].get<double>(), 1.0);
   }
-  fs::remove_all(d);
 }
 
 TEST(experiments_App, FieldOfViewOnTheSmallWorld) {
@@ -72,7 +75,6 @@ TEST(experiments_App, FieldOfViewOnTheSmallWorld) {
   ASSERT_EQ(j["results"].size(), 6u);
   for (const auto& r : j["results"])
     EXPECT_EQ(r["labels"].size(), j["poses"].size());
-  fs::remove_all(d);
 }
 
 TEST(experiments_App, BadArgumentsAreUsageErrors) {
@@ -85,7 +87,6 @@ TEST(experiments_App, BadArgumentsAreUsageErrors) {
   EXPECT_EQ(run("field-of-view --taus -1 --out " + d.string()), 2);
   EXPECT_EQ(run("nonsense"), 2);
   EXPECT_FALSE(fs::exists(d / "info_loss_runs.csv"));
-  fs::remove_all(d);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "hmt/common/error.h"
 #include "hmt/grid/png.h"
+#include "hmt_test/scratch.h"
 
 namespace hmt::grid {
 namespace {
@@ -27,7 +28,7 @@ TEST(MapExport, PgmYamlAndPngAgree) {
   EXPECT_GT(m.image.at(1, kTileSize - 1), 230);
   EXPECT_EQ(m.image.at(5, 0), 205);
 
-  const std::string dir = testing::TempDir() + "/hmt_map_export";
+  const std::string dir = scratch::track(testing::TempDir() + "/hmt_map_export");
   std::filesystem::create_directories(dir);
   write_png(m, dir + "/map.png");
   write_pgm_yaml(m, dir + "/map");
@@ -70,7 +71,7 @@ TEST(MapExport, StreamedImagesAreByteForByteTheWholeOnes) {
   EXPECT_GT(f.height, 600);  // several bands
   EXPECT_DOUBLE_EQ(f.origin_x, whole.origin_x);
   EXPECT_DOUBLE_EQ(f.origin_y, whole.origin_y);
-  const std::string dir = testing::TempDir() + "/hmt_map_stream";
+  const std::string dir = scratch::track(testing::TempDir() + "/hmt_map_stream");
   std::filesystem::create_directories(dir);
   write_png(whole, dir + "/whole.png");
   write_pgm_yaml(whole, dir + "/whole");
@@ -102,7 +103,7 @@ class FailingRows : public BandRows {
 };
 
 TEST(MapExport, AFailingSourceLeavesTheEarlierFileIntact) {
-  const std::string dir = testing::TempDir() + "/hmt_map_stream_fail";
+  const std::string dir = scratch::track(testing::TempDir() + "/hmt_map_stream_fail");
   std::filesystem::create_directories(dir);
   const MapImage m = render(varied_grid(), 0);
   write_png(m, dir + "/map.png");

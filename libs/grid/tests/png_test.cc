@@ -9,12 +9,14 @@
 #include <random>
 
 #include "hmt/common/error.h"
+#include "hmt_test/scratch.h"
 
 namespace hmt::grid {
 namespace {
 
+// Removed if the test passes.
 std::string temp_dir() {
-  const std::string dir = testing::TempDir() + "/hmt_png";
+  const std::string dir = scratch::track(testing::TempDir() + "/hmt_png");
   std::filesystem::create_directories(dir);
   return dir;
 }

@@ -10,15 +10,17 @@
 #include <string>
 
 #include "hmt/common/error.h"
+#include "hmt_test/scratch.h"
 
 namespace hmt::grouping {
 namespace {
 namespace fs = std::filesystem;
 
+// A file removed if the test passes.
 std::string temp_file(const std::string& name, const std::string& text,
                       bool gzip = false) {
-  const fs::path p = fs::temp_directory_path() /
-                     ("hmt_grouping_" + std::to_string(::getpid()) + "_" + name);
+  const fs::path p = scratch::track(fs::temp_directory_path() /
+                                    ("hmt_grouping_" + std::to_string(::getpid()) + "_" + name));
   if (gzip) {
     gzFile f = gzopen(p.c_str(), "wb");
     gzwrite(f, text.data(), static_cast<unsigned>(text.size()));

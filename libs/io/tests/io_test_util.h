@@ -16,6 +16,7 @@
 
 #include "hmt/common/error.h"
 #include "hmt/common/sensor_data.h"
+#include "hmt_test/scratch.h"
 
 namespace hmt::io::testing_util {
 
@@ -34,12 +35,20 @@ inline std::string shared_carmen_path(const std::string& name) {
   return repo_path("../shared/datasets/carmen/" + name + ".log.gz");
 }
 
-// A fresh folder per test, under gtest's temporary directory.
+// A fresh folder per test, under gtest's temporary directory, removed if the
+// test passes, and the folders above it (the process's; a parameterized
+// test's name holds '/'s) once empty.
 inline std::string scratch_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::string dir = ::testing::TempDir() + "hmt_io_tests_" +
-                          std::to_string(::getpid()) + "/" +
-                          info->test_suite_name() + "." + info->name();
+  const std::string parent =
+      ::testing::TempDir() + "hmt_io_tests_" + std::to_string(::getpid());
+  const std::string name =
+      std::string(info->test_suite_name()) + "." + info->name();
+  const std::string dir = parent + "/" + name;
+  hmt::scratch::track(parent, hmt::scratch::Remove::kIfEmpty);
+  for (size_t s = name.find('/'); s != std::string::npos; s = name.find('/', s + 1))
+    hmt::scratch::track(parent + "/" + name.substr(0, s), hmt::scratch::Remove::kIfEmpty);
+  hmt::scratch::track(dir);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

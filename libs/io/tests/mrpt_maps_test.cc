@@ -20,14 +20,16 @@
 #include <stdexcept>
 
 #include "hmt/common/error.h"
+#include "hmt_test/scratch.h"
 
 namespace hmt::io {
 namespace {
 namespace fs = std::filesystem;
 
+// A fresh folder, removed if the test passes.
 std::string temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() /
-                     ("hmt_mrpt_maps_" + name + "_" + std::to_string(::getpid()));
+  const fs::path d = scratch::track(fs::temp_directory_path() /
+                                    ("hmt_mrpt_maps_" + name + "_" + std::to_string(::getpid())));
   fs::remove_all(d);
   fs::create_directories(d);
   return d.string();
@@ -97,7 +99,6 @@ TEST(MrptMaps, GridMapReadsBackInMrpt) {
   // MRPT's own reading of what is an obstacle.
   EXPECT_TRUE(grid.isStaticCell(20, 20, 0.3f));
   EXPECT_FALSE(grid.isStaticCell(20, 10, 0.3f));
-  fs::remove_all(dir);
 }
 
 LaserScan test_scan(double t, float range) {
@@ -165,7 +166,6 @@ TEST(MrptMaps, SimpleMapReadsBackInMrpt) {
     EXPECT_TRUE(scan->getScanRangeValidity(4));
     EXPECT_NEAR(mrpt::Clock::toDouble(scan->timestamp), kfs[i].scan.timestamp, 1e-6);
   }
-  fs::remove_all(dir);
 }
 
 TEST(MrptMaps, BadInputIsAnErrorAndNoFile) {
@@ -186,7 +186,6 @@ TEST(MrptMaps, BadInputIsAnErrorAndNoFile) {
   } catch (const OutputError& e) {
     EXPECT_NE(std::string(e.what()).find("none/map.gridmap.gz"), std::string::npos) << e.what();
   }
-  fs::remove_all(dir);
 }
 
 // Without the plugin, nothing is written and an earlier file stays whole.
@@ -206,7 +205,6 @@ TEST(MrptMaps, MissingPluginLeavesAnEarlierFileAlone) {
   }
   EXPECT_EQ(slurp(path), before);
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include "hmt/common/error.h"
 #include "hmt/topology/topology_file.h"
+#include "hmt_test/scratch.h"
 
 namespace hmt::islands {
 namespace {
@@ -14,16 +15,16 @@ namespace fs = std::filesystem;
 
 class MapInput : public ::testing::Test {
  protected:
+  // The test's folder, removed if the test passes.
   void SetUp() override {
-    dir_ = (fs::temp_directory_path() /
-            ("hmt_islands_" + std::string(::testing::UnitTest::GetInstance()
-                                              ->current_test_info()->name()) +
-             "_" + std::to_string(::getpid())))
+    dir_ = scratch::track(fs::temp_directory_path() /
+                          ("hmt_islands_" + std::string(::testing::UnitTest::GetInstance()
+                                                            ->current_test_info()->name()) +
+                           "_" + std::to_string(::getpid())))
                .string();
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string write(const std::string& name, const std::string& text) {
     const std::string p = dir_ + "/" + name;
     std::ofstream(p, std::ios::binary) << text;

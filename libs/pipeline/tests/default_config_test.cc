@@ -13,6 +13,7 @@
 
 #include "hmt/common/error.h"
 #include "hmt/pipeline/metric_job.h"
+#include "hmt_test/scratch.h"
 
 namespace hmt::pipeline {
 namespace {
@@ -29,17 +30,16 @@ std::string slurp(const std::string& path) {
   return ss.str();
 }
 
-// A temporary INI file, removed with the test's folder.
+// The test's folder for temporary INI files, removed if the test passes.
 struct TempDir {
   fs::path dir;
   TempDir() {
-    dir = fs::temp_directory_path() /
-          ("hmt_default_config_" + std::to_string(::getpid()) + "_" +
-           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir = scratch::track(fs::temp_directory_path() /
+                         ("hmt_default_config_" + std::to_string(::getpid()) + "_" +
+                          ::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir);
     fs::create_directories(dir);
   }
-  ~TempDir() { fs::remove_all(dir); }
   std::string write(const std::string& name, const std::string& text) const {
     const fs::path p = dir / name;
     std::ofstream(p, std::ios::binary) << text;

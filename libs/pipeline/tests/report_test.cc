@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include "hmt_test/scratch.h"
+
 namespace hmt::pipeline {
 namespace {
 namespace fs = std::filesystem;
@@ -23,9 +25,10 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
+// A fresh folder, removed if the test passes.
 fs::path fresh_dir(const std::string& name) {
-  const fs::path d =
-      fs::temp_directory_path() / ("hmt_report_" + name + "_" + std::to_string(::getpid()));
+  const fs::path d = scratch::track(fs::temp_directory_path() /
+                                    ("hmt_report_" + name + "_" + std::to_string(::getpid())));
   fs::remove_all(d);
   fs::create_directories(d);
   return d;

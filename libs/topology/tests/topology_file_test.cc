@@ -15,6 +15,7 @@
 
 #include "hmt/common/error.h"
 #include "hmt/common/random.h"
+#include "hmt_test/scratch.h"
 
 namespace hmt::topology {
 namespace {
@@ -22,18 +23,15 @@ namespace fs = std::filesystem;
 
 // ------------------------------------------------------------ fixtures
 
+// The test's folder, removed if the test passes.
 class TempDir {
  public:
   TempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("hmt_topology_" + std::to_string(::getpid()) + "_" + info->name());
+    path_ = scratch::track(fs::temp_directory_path() /
+                           ("hmt_topology_" + std::to_string(::getpid()) + "_" + info->name()));
     fs::remove_all(path_);
     fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
   }
   std::string file(const std::string& name) const {
     return (path_ / name).string();
