@@ -35,11 +35,7 @@ inline std::string slurp(const std::string& path) {
 
 // A fresh folder for the running test, removed if it passes.
 inline std::string temp_dir(const std::string& name) {
-  const auto d = scratch::track(std::filesystem::temp_directory_path() /
-                                ("hmt_e2e_" + name + "_" + std::to_string(::getpid())));
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d.string();
+  return scratch::folder("e2e_" + name).string();
 }
 
 // Runs `binary` with `args` appended as is (quote paths yourself), from the

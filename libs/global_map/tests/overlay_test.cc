@@ -184,8 +184,7 @@ TEST(Overlay, WriteColorPngRoundTripsAndFailsCleanly) {
   const grid::MapImage base = blank_base();
   const Scene s = two_areas();
   const Image out = draw_topology_overlay(base, s.map, s.poses);
-  const std::string dir = scratch::track(testing::TempDir() + "/hmt_overlay");
-  std::filesystem::create_directories(dir);
+  const std::string dir = scratch::folder("overlay").string();
   write_color_png(out, dir + "/overlay.png");
   const cv::Mat back = cv::imread(dir + "/overlay.png", cv::IMREAD_COLOR);
   ASSERT_FALSE(back.empty());
@@ -219,8 +218,7 @@ TEST(Overlay, StreamedBandByBandItIsTheWholeImage) {
   s.poses.poses.emplace(2, PoseGaussian(Pose2D(2.5, 5.12, 0.3), cov));
   const grid::MapImage base = grid::render(g, 10);
   ASSERT_GT(base.image.height(), 256);  // more than one band
-  const std::string dir = scratch::track(testing::TempDir() + "/hmt_overlay_stream");
-  std::filesystem::create_directories(dir);
+  const std::string dir = scratch::folder("overlay_stream").string();
   write_color_png(draw_topology_overlay(base, s.map, s.poses), dir + "/whole.png");
   TopologyOverlayRows rows(g, grid::map_frame(g, 10), s.map, s.poses);
   grid::write_png_file(rows, dir + "/streamed.png");

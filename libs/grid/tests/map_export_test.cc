@@ -28,8 +28,7 @@ TEST(MapExport, PgmYamlAndPngAgree) {
   EXPECT_GT(m.image.at(1, kTileSize - 1), 230);
   EXPECT_EQ(m.image.at(5, 0), 205);
 
-  const std::string dir = scratch::track(testing::TempDir() + "/hmt_map_export");
-  std::filesystem::create_directories(dir);
+  const std::string dir = scratch::folder("map_export").string();
   write_png(m, dir + "/map.png");
   write_pgm_yaml(m, dir + "/map");
   const cv::Mat png = cv::imread(dir + "/map.png", cv::IMREAD_GRAYSCALE);
@@ -71,8 +70,7 @@ TEST(MapExport, StreamedImagesAreByteForByteTheWholeOnes) {
   EXPECT_GT(f.height, 600);  // several bands
   EXPECT_DOUBLE_EQ(f.origin_x, whole.origin_x);
   EXPECT_DOUBLE_EQ(f.origin_y, whole.origin_y);
-  const std::string dir = scratch::track(testing::TempDir() + "/hmt_map_stream");
-  std::filesystem::create_directories(dir);
+  const std::string dir = scratch::folder("map_stream").string();
   write_png(whole, dir + "/whole.png");
   write_pgm_yaml(whole, dir + "/whole");
   MapRows png_rows(g, f);
@@ -103,8 +101,7 @@ class FailingRows : public BandRows {
 };
 
 TEST(MapExport, AFailingSourceLeavesTheEarlierFileIntact) {
-  const std::string dir = scratch::track(testing::TempDir() + "/hmt_map_stream_fail");
-  std::filesystem::create_directories(dir);
+  const std::string dir = scratch::folder("map_stream_fail").string();
   const MapImage m = render(varied_grid(), 0);
   write_png(m, dir + "/map.png");
   const std::string before = read_bytes(dir + "/map.png");

@@ -16,9 +16,7 @@ namespace {
 
 // Removed if the test passes.
 std::string temp_dir() {
-  const std::string dir = scratch::track(testing::TempDir() + "/hmt_png");
-  std::filesystem::create_directories(dir);
-  return dir;
+  return scratch::folder("png").string();
 }
 
 Image random_image(int width, int height, int channels, int seed) {

@@ -28,11 +28,7 @@ namespace fs = std::filesystem;
 
 // A fresh folder, removed if the test passes.
 std::string temp_dir(const std::string& name) {
-  const fs::path d = scratch::track(fs::temp_directory_path() /
-                                    ("hmt_mrpt_maps_" + name + "_" + std::to_string(::getpid())));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d.string();
+  return scratch::folder("mrpt_maps_" + name).string();
 }
 
 std::string slurp(const std::string& path) {

@@ -34,11 +34,8 @@ std::string slurp(const std::string& path) {
 struct TempDir {
   fs::path dir;
   TempDir() {
-    dir = scratch::track(fs::temp_directory_path() /
-                         ("hmt_default_config_" + std::to_string(::getpid()) + "_" +
-                          ::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    dir = scratch::folder(std::string("default_config_") +
+                          ::testing::UnitTest::GetInstance()->current_test_info()->name());
   }
   std::string write(const std::string& name, const std::string& text) const {
     const fs::path p = dir / name;

@@ -27,11 +27,7 @@ std::string slurp(const fs::path& p) {
 
 // A fresh folder, removed if the test passes.
 fs::path fresh_dir(const std::string& name) {
-  const fs::path d = scratch::track(fs::temp_directory_path() /
-                                    ("hmt_report_" + name + "_" + std::to_string(::getpid())));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return scratch::folder("report_" + name);
 }
 
 framework::StepTrace trace(uint64_t step, std::map<topology::AreaId, double> pmf,

@@ -27,11 +27,8 @@ namespace fs = std::filesystem;
 class TempDir {
  public:
   TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = scratch::track(fs::temp_directory_path() /
-                           ("hmt_topology_" + std::to_string(::getpid()) + "_" + info->name()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
+    path_ = scratch::folder(std::string("topology_") +
+                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
   }
   std::string file(const std::string& name) const {
     return (path_ / name).string();

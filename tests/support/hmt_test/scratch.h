@@ -10,11 +10,13 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -86,6 +88,16 @@ inline std::filesystem::path track(std::filesystem::path path, Remove how = Remo
   const detail::Entry e{std::move(path), how};
   if (std::find(entries.begin(), entries.end(), e) == entries.end()) entries.push_back(e);
   return e.path;
+}
+
+// A fresh, empty folder `hmt_<name>_<pid>` in the temporary directory for the
+// running test, registered (the pid keeps two suites run at once apart).
+inline std::filesystem::path folder(const std::string& name) {
+  const std::filesystem::path d = track(std::filesystem::temp_directory_path() /
+                                        ("hmt_" + name + "_" + std::to_string(::getpid())));
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
 }
 
 }  // namespace hmt::scratch
