@@ -367,6 +367,7 @@ std::vector<Outcome> TransitionModel::reachable_areas(const topology::HmtMap& ma
   // How far the observations reach from the robot.
   double reach_ = 0.0;
   for (const Point2D& p : obs.points.hit) reach_ = std::max(reach_, std::hypot(p.x, p.y));
+  const Eigen::Vector3d floor = prior_floor(opt_);
   for (AreaId id : map.area_ids()) {
     if (id == current || !tree.reaches(id)) continue;
     const auto& area_map = map.area(id).map;
@@ -380,7 +381,6 @@ std::vector<Outcome> TransitionModel::reachable_areas(const topology::HmtMap& ma
     grid::CellIndex lo, hi;
     if (!area_map->bounds(&lo, &hi)) continue;
     const double res = area_map->resolution();
-    const Eigen::Vector3d floor = prior_floor(opt_);
     const double reach = reach_ + std::sqrt(opt_.gate * std::max(o.prior.cov(0, 0) + floor(0),
                                                                  o.prior.cov(1, 1) + floor(1)));
     const double dx = std::max({lo.x * res - o.prior.mean.x, 0.0, o.prior.mean.x - (hi.x + 1) * res});
