@@ -10,6 +10,7 @@
 #include <mrpt/serialization/CArchive.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <map>
@@ -140,6 +141,20 @@ TEST(MrptMapsApp, MalagaMapsReadBackInMrpt) {
   const size_t nodes = summary["global_map"]["keyframe_graph"]["keyframe_nodes"].get<size_t>();
   EXPECT_GT(nodes, 20u);
   EXPECT_EQ(check_keyframes(out), nodes);
+  // Whether its rounds settled: ended early with no keyframe moved by more
+  // than the tolerance in the last one, or ran them all.
+  const auto& graph = summary["global_map"]["keyframe_graph"];
+  const double move = graph["last_round_move_m"].get<double>();
+  const double turn = graph["last_round_move_rad"].get<double>();
+  EXPECT_GE(move, 0.0);
+  EXPECT_GE(turn, 0.0);
+  if (graph["converged"].get<bool>()) {
+    EXPECT_LE(graph["rounds"].get<int>(), 5);
+    EXPECT_LE(std::max(move, turn), 0.01);
+  } else {
+    EXPECT_EQ(graph["rounds"].get<int>(), 5);
+    EXPECT_GT(std::max(move, turn), 0.01);
+  }
 
   // Same log, config and seed: the same bytes (zlib's gzip header holds no
   // time), whatever the particle threads.

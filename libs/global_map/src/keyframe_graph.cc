@@ -318,7 +318,10 @@ class Graph {
           break;
       }
       r.final_cost = cost;
-      if (moved_at_most(before_round, opt_.round_tolerance)) break;
+      largest_move(before_round, &r.last_round_move_xy, &r.last_round_move_theta);
+      r.converged = r.last_round_move_xy <= opt_.round_tolerance &&
+                    r.last_round_move_theta <= opt_.round_tolerance;
+      if (r.converged) break;
     }
     // The last round's constraints, counted and used for the covariances.
     for (const Edge& e : edges) {
@@ -507,13 +510,15 @@ class Graph {
     }
   }
 
-  // Whether no keyframe moved by more than `tolerance` (m, rad) from `x`.
-  bool moved_at_most(const std::vector<Pose2D>& x, double tolerance) const {
-    for (size_t v = area_ids_.size(); v < x_.size(); ++v)
-      if (std::hypot(x_[v].x - x[v].x, x_[v].y - x[v].y) > tolerance ||
-          std::fabs(wrap_angle(x_[v].theta - x[v].theta)) > tolerance)
-        return false;
-    return true;
+  // The largest distance and the largest heading change of a keyframe from
+  // `x` to the current estimate.
+  void largest_move(const std::vector<Pose2D>& x, double* xy, double* theta) const {
+    *xy = 0.0;
+    *theta = 0.0;
+    for (size_t v = area_ids_.size(); v < x_.size(); ++v) {
+      *xy = std::max(*xy, std::hypot(x_[v].x - x[v].x, x_[v].y - x[v].y));
+      *theta = std::max(*theta, std::fabs(wrap_angle(x_[v].theta - x[v].theta)));
+    }
   }
 
   bool take_step(const std::vector<Edge>& edges, const std::vector<int>& column,

@@ -164,6 +164,31 @@ TEST(KeyframeGraph, RecoversTheTruePosesWhereTheAreaEstimateIsOff) {
     EXPECT_LT(position_error(traj[i], s.truth[i]), 0.03) << "step " << i;
 }
 
+TEST(KeyframeGraph, ReportsWhetherTheRoundsSettled) {
+  // The area estimate is 0.36 m off: the first round moves keyframes by
+  // decimetres, the second by centimetres, and from the third on the
+  // matches' own jitter (their optimum moves with the start by up to half
+  // a 5 cm cell) moves some keyframe by 2-3 cm each round. With a
+  // tolerance of one cell the rounds end early, and the report says so.
+  const Scenario s(Pose2D(0.3, -0.2, 0.04), diag(0.1, 0.03));
+  KeyframeGraphOptions opt;
+  opt.round_tolerance = 0.05;
+  const KeyframeGraph settled = solve(s, opt);
+  EXPECT_TRUE(settled.report.converged);
+  EXPECT_LT(settled.report.rounds, opt.rounds);
+  EXPECT_LE(settled.report.last_round_move_xy, opt.round_tolerance);
+  EXPECT_LE(settled.report.last_round_move_theta, opt.round_tolerance);
+
+  // Cut off after the first round, the report says that the estimate was
+  // still moving, and by how much.
+  KeyframeGraphOptions one = opt;
+  one.rounds = 1;
+  const KeyframeGraph cut = solve(s, one);
+  EXPECT_EQ(cut.report.rounds, 1);
+  EXPECT_FALSE(cut.report.converged);
+  EXPECT_GT(cut.report.last_round_move_xy, 0.1);
+}
+
 TEST(KeyframeGraph, RecoversAMisplacedRevisitInsideAnArea) {
   // The arc is right; the error is inside area 1: its second visit's poses
   // are 0.15 m and 0.02 rad off, so placing whole areas puts that stretch

@@ -91,6 +91,13 @@ struct KeyframeGraphReport {
   // Robust constraints beyond the kernel's threshold at the final estimate.
   size_t down_weighted = 0;
   int rounds = 0;
+  // Whether the last round moved no keyframe by more than round_tolerance
+  // (the rounds ended early); false when they ran out first. The largest
+  // move of a keyframe in the last round (m, rad) says by how much the
+  // estimate was still changing when they stopped.
+  bool converged = false;
+  double last_round_move_xy = 0;
+  double last_round_move_theta = 0;
   int iterations = 0;       // Gauss-Newton steps, all rounds
   double initial_cost = 0;  // robust cost of the first round at its start
   double final_cost = 0;    // at the end of the last round
