@@ -2,7 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <fstream>
 
 #include "hmt/common/error.h"
@@ -11,19 +10,14 @@
 
 namespace hmt::islands {
 namespace {
-namespace fs = std::filesystem;
 
 class MapInput : public ::testing::Test {
  protected:
   // The test's folder, removed if the test passes.
   void SetUp() override {
-    dir_ = scratch::track(fs::temp_directory_path() /
-                          ("hmt_islands_" + std::string(::testing::UnitTest::GetInstance()
-                                                            ->current_test_info()->name()) +
-                           "_" + std::to_string(::getpid())))
+    dir_ = scratch::folder(std::string("islands_") +
+                           ::testing::UnitTest::GetInstance()->current_test_info()->name())
                .string();
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
   }
   std::string write(const std::string& name, const std::string& text) {
     const std::string p = dir_ + "/" + name;
