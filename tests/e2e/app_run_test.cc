@@ -59,10 +59,17 @@ TEST(AppRun, MalagaOneLoopMatchesIndependentReference) {
   // The HMT outputs, and the loop closed by inference when the robot comes
   // back to its start.
   for (const char* f : {"map_topology.png", "hmt_map.bin", "topology.json", "topology.dot",
-                        "topological_pmf.csv", "tsbi_events.csv", "memory.csv", "ess.csv",
-                        "process_times.csv", "rtl.csv", "areas/area_1.png"})
+                        "topological_pmf.csv", "tsbi_events.csv", "tsbi_candidates.csv",
+                        "memory.csv", "ess.csv", "process_times.csv", "rtl.csv",
+                        "areas/area_1.png"})
     EXPECT_TRUE(fs::exists(dir + "/out/" + f)) << f;
   expect_loop_closed_into_area_1(dir + "/out", 3);
+  // The closure's event also reported area 1 among its candidates, and some
+  // event reported an area it did not take and why.
+  const auto candidates = expect_candidates_agree_with_events(dir + "/out");
+  EXPECT_TRUE(std::any_of(candidates.begin(), candidates.end(), [](const auto& r) {
+    return r.size() == 16u && r[15] != "outcome";
+  }));
   expect_rtl_answered_during_a_long_step(dir + "/out/rtl.csv", 20.0);
 }
 
@@ -185,7 +192,8 @@ TEST(AppRun, SameSeedSameBytesWhateverTheThreads) {
       base + "--set metric_slam.threads=1 --set area.threads=1 --out '" + dir + "/a2'", dir);
   ASSERT_EQ(a2.exit_code, 0) << a2.err;
   for (const char* f : {"trajectory.tum", "map.png", "map.pgm", "map.yaml", "hmt_map.bin",
-                        "topology.json", "tsbi_events.csv", "topological_pmf.csv", "ess.csv"}) {
+                        "topology.json", "tsbi_events.csv", "tsbi_candidates.csv",
+                        "topological_pmf.csv", "ess.csv"}) {
     EXPECT_EQ(slurp(dir + "/a/" + f), slurp(dir + "/b/" + f)) << f;
     EXPECT_EQ(slurp(dir + "/a/" + f), slurp(dir + "/a2/" + f)) << f;
   }

@@ -30,6 +30,7 @@ namespace fs = std::filesystem;
 const char* const kResults[] = {"trajectory.tum",     "map.png",           "map.pgm",
                                 "map.yaml",           "map_topology.png",  "hmt_map.bin",
                                 "topology.json",      "topology.dot",      "tsbi_events.csv",
+                                "tsbi_candidates.csv",
                                 "topological_pmf.csv", "ess.csv",          "config_effective.ini",
                                 "areas/area_1.png"};
 

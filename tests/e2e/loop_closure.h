@@ -76,6 +76,35 @@ inline void expect_loop_closed_into_area_1(const std::string& out, int from_area
   EXPECT_GE(summary["loop_closures_accepted"].get<int>(), 1);
 }
 
+// tsbi_candidates.csv agrees with tsbi_events.csv: every known outcome of
+// an event is a candidate reported as "outcome", with the same F, and every
+// candidate reported so is one; each candidate row is well formed (a known
+// verdict, finite non-negative prior deviations). Returns the rows.
+inline std::vector<std::vector<std::string>> expect_candidates_agree_with_events(
+    const std::string& out) {
+  // tsbi_candidates.csv: step,time,hypothesis,from_area,area,prior_x,prior_y,
+  // prior_theta,prior_sd_x,prior_sd_y,prior_sd_theta,wide,starts,
+  // best_match_ratio,log_f,verdict
+  const auto candidates = read_csv(out + "/tsbi_candidates.csv");
+  std::map<std::string, std::string> reported;  // "step/hypothesis/area" -> log F
+  const std::vector<std::string> verdicts = {"out_of_reach", "bound", "no_mode",
+                                             "improbable", "area_check", "outcome"};
+  for (const auto& r : candidates) {
+    EXPECT_EQ(r.size(), 16u);
+    if (r.size() != 16u) continue;
+    EXPECT_NE(std::find(verdicts.begin(), verdicts.end(), r[15]), verdicts.end()) << r[15];
+    for (int c : {8, 9, 10}) EXPECT_GE(std::stod(r[c]), 0.0);
+    const double ratio = std::stod(r[13]);
+    EXPECT_TRUE(ratio >= 0.0 && ratio <= 1.0) << ratio;
+    if (r[15] == "outcome") reported[r[0] + "/" + r[2] + "/" + r[4]] = r[14];
+  }
+  std::map<std::string, std::string> known;
+  for (const auto& r : read_csv(out + "/tsbi_events.csv"))
+    if (r.size() == 11u && r[5] == "known") known[r[0] + "/" + r[2] + "/" + r[6]] = r[7];
+  EXPECT_EQ(reported, known) << "the candidates reported as outcomes are not the events' known ones";
+  return candidates;
+}
+
 // rtl.csv (framework.rtl_probe_hz > 0): some answer of real-time
 // localization came while metric SLAM was still on a step that had been
 // running for at least `long_ms` (a step with a new-area event waits for

@@ -326,6 +326,10 @@ template <class A>
 void serialize(A& ar, Outcome& o) {
   ar(o.area, o.log_f, o.probability, o.prior, o.robot, o.match_ratio, o.modes);
 }
+template <class A>
+void serialize(A& ar, CandidateReport& r) {
+  ar(r.area, r.prior_mean, r.prior_sd, r.verdict, r.wide, r.starts, r.best_ratio, r.log_f);
+}
 }  // namespace hmt::tsbi
 
 namespace hmt::tlca {
@@ -343,8 +347,8 @@ void serialize(A& ar, TrajectorySegment& s) {
 }
 template <class A>
 void serialize(A& ar, TransitionEvent& e) {
-  ar(e.step, e.time, e.hypothesis, e.parent_probability, e.from_area, e.outcomes, e.children,
-     e.entered, e.observed_points, e.candidate_maps);
+  ar(e.step, e.time, e.hypothesis, e.parent_probability, e.from_area, e.outcomes, e.considered,
+     e.children, e.entered, e.observed_points, e.candidate_maps);
 }
 template <class A>
 void serialize(A& ar, AcceptanceEvent& e) {

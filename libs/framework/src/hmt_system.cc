@@ -227,7 +227,7 @@ void HmtSystem::dispatch_event(const area::AreaDecision& decision) {
 }
 
 void HmtSystem::on_event_result(const EventMsg& r) {
-  filter_.apply_event(r.decision, r.inputs, r.outcomes);
+  filter_.apply_event(r.decision, r.inputs, r.outcomes, &r.considered);
   // The event's transients (the parent's copies, the pruned hypotheses'
   // maps) are freed now: their pages go back to the system, every 250
   // steps at most (resources.h).
@@ -354,7 +354,9 @@ void HmtSystem::on_keyframe(KeyframeMsg& m) {
 void HmtSystem::on_event(EventMsg& m) {
   if (event_hook_) event_hook_(m.step);
   const Clock::time_point t0 = Clock::now();
-  for (const hybrid::EventInput& in : m.inputs) m.outcomes.push_back(filter_.evaluate(in));
+  m.considered.resize(m.inputs.size());
+  for (size_t i = 0; i < m.inputs.size(); ++i)
+    m.outcomes.push_back(filter_.evaluate(m.inputs[i], &m.considered[i]));
   add_time(times_.tsbi, m.step, ms_since(t0));
   if (!event_results_.push(std::move(m))) throw Error(ExitCode::kInternal, "metric SLAM stopped");
 }

@@ -85,8 +85,9 @@ void HybridFilter::finish() {
 void HybridFilter::run_event(const area::AreaDecision& decision) {
   const std::vector<EventInput> inputs = prepare_event(decision);
   std::vector<std::vector<tsbi::Outcome>> outcomes;
-  for (const EventInput& in : inputs) outcomes.push_back(evaluate(in));
-  apply_event(decision, inputs, outcomes);
+  std::vector<std::vector<tsbi::CandidateReport>> considered(inputs.size());
+  for (size_t i = 0; i < inputs.size(); ++i) outcomes.push_back(evaluate(inputs[i], &considered[i]));
+  apply_event(decision, inputs, outcomes, &considered);
 }
 
 void HybridFilter::accept_and_align() {
@@ -225,14 +226,16 @@ std::vector<EventInput> HybridFilter::prepare_event(const area::AreaDecision& de
   return inputs;
 }
 
-std::vector<tsbi::Outcome> HybridFilter::evaluate(const EventInput& in) const {
-  return tsbi_.evaluate(in.map, in.from_area, in.robot, in.observations);
+std::vector<tsbi::Outcome> HybridFilter::evaluate(
+    const EventInput& in, std::vector<tsbi::CandidateReport>* considered) const {
+  return tsbi_.evaluate(in.map, in.from_area, in.robot, in.observations, considered);
 }
 
 void HybridFilter::apply_event(const area::AreaDecision& decision,
                                const std::vector<EventInput>& inputs,
-                               const std::vector<std::vector<tsbi::Outcome>>& outcomes) {
-  if (inputs.size() != outcomes.size())
+                               const std::vector<std::vector<tsbi::Outcome>>& outcomes,
+                               const std::vector<std::vector<tsbi::CandidateReport>>* considered) {
+  if (inputs.size() != outcomes.size() || (considered && considered->size() != inputs.size()))
     throw Error(ExitCode::kInternal, "apply_event: one TSBI result per input is needed");
   ++stats_.new_area_events;
   std::vector<Hypothesis> parents;
@@ -280,6 +283,7 @@ void HybridFilter::apply_event(const area::AreaDecision& decision,
     const size_t k = input_of[i];
     std::vector<Hypothesis> children = branch(std::move(parent), decision, inputs[k],
                                               outcomes[k], followed[i].outcomes, child_log_p);
+    if (considered) transitions_.back().considered = (*considered)[k];  // branch()'s event
     for (auto& c : children) hyps_.push_back(std::move(c));
   }
   settle();

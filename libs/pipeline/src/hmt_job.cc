@@ -249,6 +249,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, InputSteps& steps, const LogOpe
   write_memory_csv(out_dir + "/memory.csv", system.traces());
   write_process_times_csv(out_dir + "/process_times.csv", system.times(), system.traces());
   write_tsbi_events_csv(out_dir + "/tsbi_events.csv", filter.transitions());
+  write_tsbi_candidates_csv(out_dir + "/tsbi_candidates.csv", filter.transitions());
   if (probe) write_rtl_csv(out_dir + "/rtl.csv", probe->samples());
   nlohmann::json j = run_summary(system);
   j["input"] = source;

@@ -93,6 +93,29 @@ void write_tsbi_events_csv(const std::string& path,
   write_text_atomically(path, o.str());
 }
 
+void write_tsbi_candidates_csv(const std::string& path,
+                               const std::vector<hybrid::TransitionEvent>& events) {
+  std::ostringstream o;
+  o << "step,time,hypothesis,from_area,area,prior_x,prior_y,prior_theta,prior_sd_x,"
+       "prior_sd_y,prior_sd_theta,wide,starts,best_match_ratio,log_f,verdict\n";
+  for (const auto& ev : events)
+    for (const tsbi::CandidateReport& r : ev.considered) {
+      o << ev.step << ',' << fmt("%.6f", ev.time) << ',' << ev.hypothesis << ','
+        << ev.from_area << ',' << r.area << ',' << fmt("%.3f", r.prior_mean.x) << ','
+        << fmt("%.3f", r.prior_mean.y) << ',' << fmt("%.4f", r.prior_mean.theta) << ','
+        << fmt("%.3f", r.prior_sd(0)) << ',' << fmt("%.3f", r.prior_sd(1)) << ','
+        << fmt("%.4f", r.prior_sd(2)) << ',' << (r.wide ? 1 : 0) << ',' << r.starts << ',';
+      o << fmt("%.4f", r.best_ratio) << ',';
+      // log F exists only where a mode passed the gates.
+      if (r.verdict == tsbi::CandidateReport::Verdict::kImprobable ||
+          r.verdict == tsbi::CandidateReport::Verdict::kAreaCheck ||
+          r.verdict == tsbi::CandidateReport::Verdict::kOutcome)
+        o << fmt("%.4f", r.log_f);
+      o << ',' << tsbi::verdict_name(r.verdict) << '\n';
+    }
+  write_text_atomically(path, o.str());
+}
+
 void write_topology_json(const std::string& path, const topology::HmtMap& map,
                          const global_map::GlobalPoses& poses) {
   nlohmann::json j;

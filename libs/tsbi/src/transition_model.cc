@@ -24,6 +24,15 @@ Eigen::Vector3d prior_floor(const TsbiOptions& o) {
                          o.prior_std_theta * o.prior_std_theta);
 }
 
+// A report of `area` under `prior`, its verdict still to be given.
+CandidateReport candidate_report(AreaId area, const PoseGaussian& prior) {
+  CandidateReport r;
+  r.area = area;
+  r.prior_mean = prior.mean;
+  r.prior_sd = prior.cov.diagonal().cwiseMax(0.0).cwiseSqrt();
+  return r;
+}
+
 // The match starts: the prior mean and the lattice {-k, 0, k}^3 along the
 // prior's principal axes (whitened by its Cholesky factor).
 std::vector<Pose2D> match_starts(const PoseGaussian& prior, double k) {
@@ -357,10 +366,9 @@ ExpectedLikelihood TransitionModel::expected_likelihood(
   return sum_modes(search, matches, obs);
 }
 
-std::vector<Outcome> TransitionModel::reachable_areas(const topology::HmtMap& map,
-                                                      AreaId current,
-                                                      const PoseGaussian& robot,
-                                                      const Observations& obs) const {
+std::vector<Outcome> TransitionModel::reachable_areas(
+    const topology::HmtMap& map, AreaId current, const PoseGaussian& robot,
+    const Observations& obs, std::vector<CandidateReport>* out_of_reach) const {
   std::vector<Outcome> out;
   // Where every other area's frame lies, seen from the current area.
   const topology::PathTree tree = topology::shortest_paths(map, current);
@@ -378,14 +386,25 @@ std::vector<Outcome> TransitionModel::reachable_areas(const topology::HmtMap& ma
     o.prior = topology::relative(robot, candidate_frame(map, tree, current, id, opt_));
     // Cheap reach test first: can observations from anywhere in the prior's
     // gate land on the area's map at all?
+    // (An empty map is beyond any reach.)
     grid::CellIndex lo, hi;
-    if (!area_map->bounds(&lo, &hi)) continue;
-    const double res = area_map->resolution();
-    const double reach = reach_ + std::sqrt(opt_.gate * std::max(o.prior.cov(0, 0) + floor(0),
-                                                                 o.prior.cov(1, 1) + floor(1)));
-    const double dx = std::max({lo.x * res - o.prior.mean.x, 0.0, o.prior.mean.x - (hi.x + 1) * res});
-    const double dy = std::max({lo.y * res - o.prior.mean.y, 0.0, o.prior.mean.y - (hi.y + 1) * res});
-    if (std::hypot(dx, dy) > reach) continue;
+    bool within = area_map->bounds(&lo, &hi);
+    if (within) {
+      const double res = area_map->resolution();
+      const double reach = reach_ + std::sqrt(opt_.gate * std::max(o.prior.cov(0, 0) + floor(0),
+                                                                   o.prior.cov(1, 1) + floor(1)));
+      const double dx =
+          std::max({lo.x * res - o.prior.mean.x, 0.0, o.prior.mean.x - (hi.x + 1) * res});
+      const double dy =
+          std::max({lo.y * res - o.prior.mean.y, 0.0, o.prior.mean.y - (hi.y + 1) * res});
+      within = std::hypot(dx, dy) <= reach;
+    }
+    if (!within) {
+      if (out_of_reach) {
+        out_of_reach->push_back(candidate_report(id, o.prior));
+      }
+      continue;
+    }
     out.push_back(o);
   }
   return out;
@@ -493,10 +512,13 @@ size_t TransitionModel::cached_stack_bytes() const {
 std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
                                                AreaId current,
                                                const PoseGaussian& robot,
-                                               const Observations& obs) {
+                                               const Observations& obs,
+                                               std::vector<CandidateReport>* considered) {
   std::vector<Outcome> outcomes(1);
   outcomes[0].log_f = opt_.log_eta;
-  std::vector<Outcome> areas = reachable_areas(map, current, robot, obs);
+  std::vector<CandidateReport> out_of_reach;
+  std::vector<Outcome> areas =
+      reachable_areas(map, current, robot, obs, considered ? &out_of_reach : nullptr);
   // Each area and each of its starts is computed on its own, and the modes
   // are summed in start order: the order of the threads cannot matter.
   //
@@ -555,16 +577,31 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
     matches[i][k] = match_from(*map.area(areas[i].area).map, searches[i].starts[k], obs);
   });
   std::vector<char> candidate(areas.size(), 0);
+  std::vector<CandidateReport> reports(considered ? areas.size() : 0);
   for_each_index(areas.size(), [&](size_t i) {
     const topology::Area& area = map.area(areas[i].area);
     const ExpectedLikelihood f = sum_modes(searches[i], matches[i], obs);
-    if (!f.candidate) return;
+    using V = CandidateReport::Verdict;
+    auto report = [&](V verdict) {
+      if (!considered) return;
+      CandidateReport& r = reports[i];
+      r = candidate_report(areas[i].area, areas[i].prior);
+      r.verdict = verdict;
+      r.wide = searches[i].wide;
+      r.starts = static_cast<uint32_t>(searches[i].starts.size());
+      const double n = static_cast<double>(obs.points.hit.size());
+      for (const Match& m : matches[i])
+        r.best_ratio = std::max(r.best_ratio, static_cast<double>(m.score.matched) / n);
+      if (f.candidate) r.log_f = f.log_f;
+    };
+    if (!f.candidate) return report(searches[i].starts.empty() ? V::kBound : V::kNoMode);
     // Less probable than min_probability against the unexplored area
     // alone, it could never get a hypothesis: not an outcome, and not
     // worth the area check (a third of the Infinite Corridor's late
     // events went to checking such look-alikes).
-    if (f.log_f < opt_.log_eta + std::log(opt_.min_probability)) return;
-    if (opt_.area_check && !same_area(area, f.robot.mean, obs)) return;
+    if (f.log_f < opt_.log_eta + std::log(opt_.min_probability)) return report(V::kImprobable);
+    if (opt_.area_check && !same_area(area, f.robot.mean, obs)) return report(V::kAreaCheck);
+    report(V::kOutcome);
     Outcome& o = areas[i];
     o.log_f = f.log_f;
     o.robot = f.robot;
@@ -574,6 +611,12 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
   });
   for (size_t i = 0; i < areas.size(); ++i)
     if (candidate[i]) outcomes.push_back(std::move(areas[i]));
+  if (considered) {
+    *considered = std::move(out_of_reach);
+    considered->insert(considered->end(), reports.begin(), reports.end());
+    std::sort(considered->begin(), considered->end(),
+              [](const CandidateReport& a, const CandidateReport& b) { return a.area < b.area; });
+  }
   std::vector<double> lf;
   for (const Outcome& o : outcomes) lf.push_back(o.log_f);
   const std::vector<double> p = normalised_exp(std::move(lf));
@@ -593,6 +636,18 @@ topology::PoseGaussian candidate_frame(const topology::HmtMap& map,
   S.diagonal() += prior_floor(options);
   if (d.dot(S.ldlt().solve(d)) > options.gate) frame.cov += d * d.transpose();
   return frame;
+}
+
+const char* verdict_name(CandidateReport::Verdict v) {
+  switch (v) {
+    case CandidateReport::Verdict::kOutOfReach: return "out_of_reach";
+    case CandidateReport::Verdict::kBound: return "bound";
+    case CandidateReport::Verdict::kNoMode: return "no_mode";
+    case CandidateReport::Verdict::kImprobable: return "improbable";
+    case CandidateReport::Verdict::kAreaCheck: return "area_check";
+    case CandidateReport::Verdict::kOutcome: return "outcome";
+  }
+  return "unknown";
 }
 
 double log_evidence(const std::vector<Outcome>& outcomes, double log_eta) {

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <set>
+#include <string>
 #include <vector>
 
 #include "hmt/topology/shortest_paths.h"
@@ -267,6 +269,71 @@ TEST(TransitionModel, SkippingHopelessAreasChangesNoOutcome) {
   const auto corridor = observe(testing_sim::corridor_world(), {{10, 1.5, 0.0}, {10.5, 1.5, 0.0}});
   EXPECT_EQ(model(10.0, 0).evaluate(r.s.map, 3, r.robot, corridor).size(), 1u);
   EXPECT_EQ(model(10.0).evaluate(r.s.map, 3, r.robot, corridor).size(), 1u);
+}
+
+// The report of an event: every known area the arcs reach, once, in
+// ascending id, with the verdict that matches what evaluate() returned;
+// asking for it changes no outcome.
+TEST(TransitionModel, ReportsWhatBecameOfEveryKnownArea) {
+  ReturnToAreaOne r;
+  const auto plain = model().evaluate(r.s.map, 3, r.robot, r.obs);
+  std::vector<CandidateReport> considered;
+  const auto out = model().evaluate(r.s.map, 3, r.robot, r.obs, &considered);
+  expect_same_outcomes(plain, out);
+  ASSERT_EQ(considered.size(), 2u);  // areas 1 and 2 (3 is the current one)
+  EXPECT_EQ(considered[0].area, 1u);
+  EXPECT_EQ(considered[1].area, 2u);
+  // Area 1 is the outcome: its report carries the outcome's F and prior.
+  ASSERT_GE(out.size(), 2u);
+  EXPECT_EQ(out[1].area, 1u);
+  EXPECT_EQ(considered[0].verdict, CandidateReport::Verdict::kOutcome);
+  EXPECT_EQ(considered[0].log_f, out[1].log_f);
+  EXPECT_EQ(considered[0].prior_mean.x, out[1].prior.mean.x);
+  EXPECT_EQ(considered[0].prior_sd(2), std::sqrt(out[1].prior.cov(2, 2)));
+  EXPECT_TRUE(considered[0].wide);  // the broad prior was searched as a whole
+  EXPECT_GT(considered[0].starts, 27u);
+  EXPECT_GE(considered[0].best_ratio, out[1].match_ratio);
+  // Area 2, elsewhere in the office, explains too little: it is no outcome,
+  // and its report says why.
+  for (const Outcome& o : out) EXPECT_NE(o.area, 2u);
+  EXPECT_NE(considered[1].verdict, CandidateReport::Verdict::kOutcome);
+  EXPECT_LT(considered[1].best_ratio, TsbiOptions{}.min_match_ratio);
+  // Observations from a corridor nothing mapped: neither area is an outcome,
+  // both are still reported.
+  const auto corridor = observe(testing_sim::corridor_world(), {{10, 1.5, 0.0}, {10.5, 1.5, 0.0}});
+  const auto none = model().evaluate(r.s.map, 3, r.robot, corridor, &considered);
+  EXPECT_EQ(none.size(), 1u);
+  ASSERT_EQ(considered.size(), 2u);
+  for (const CandidateReport& c : considered)
+    EXPECT_NE(c.verdict, CandidateReport::Verdict::kOutcome) << "area " << c.area;
+}
+
+// The verdicts' names, as tsbi_candidates.csv writes them.
+TEST(CandidateReport, VerdictsHaveDistinctNames) {
+  using V = CandidateReport::Verdict;
+  const std::vector<V> all = {V::kOutOfReach, V::kBound, V::kImprobable,
+                              V::kNoMode,     V::kAreaCheck, V::kOutcome};
+  std::set<std::string> names;
+  for (V v : all) names.insert(verdict_name(v));
+  EXPECT_EQ(names.size(), all.size());
+  EXPECT_EQ(std::string(verdict_name(V::kOutcome)), "outcome");
+}
+
+// An area whose map no observation can reach from the prior's gate is
+// reported out of reach and never searched.
+TEST(TransitionModel, ReportsAnAreaBeyondReachAsOutOfReach) {
+  TwoKnownAreas s;
+  // Area 1's map drawn 200 m from where its arcs put it: the arcs still
+  // reach the area, the observations (an office's few metres) cannot.
+  s.map.set_map(1, map_of(testing_sim::office_world(), Pose2D(-200, 0, 0), {{2, 2, 0}}));
+  const Pose2D truth(14, 5, 0.0);
+  const auto obs = observe(testing_sim::office_world(), {truth});
+  std::vector<CandidateReport> considered;
+  model().evaluate(s.map, 3, PoseGaussian(truth - s.origin3, diag(0.1, 0.05)), obs, &considered);
+  ASSERT_EQ(considered.size(), 2u);
+  EXPECT_EQ(considered[0].area, 1u);
+  EXPECT_EQ(considered[0].verdict, CandidateReport::Verdict::kOutOfReach);
+  EXPECT_EQ(considered[0].starts, 0u);
 }
 
 TEST(TransitionModel, SameOutcomesWhateverTheThreads) {

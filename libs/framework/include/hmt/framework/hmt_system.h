@@ -148,6 +148,7 @@ class HmtSystem {
     area::AreaDecision decision;
     std::vector<hybrid::EventInput> inputs;
     std::vector<std::vector<tsbi::Outcome>> outcomes;  // filled by TSBI
+    std::vector<std::vector<tsbi::CandidateReport>> considered;  // likewise
   };
   struct AlignmentMsg {
     hybrid::AlignmentJob job;

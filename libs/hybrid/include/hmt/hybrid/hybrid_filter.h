@@ -71,6 +71,9 @@ struct TransitionEvent {
   double parent_probability = 0.0;
   topology::AreaId from_area = topology::kNoArea;
   std::vector<tsbi::Outcome> outcomes;   // every outcome weighed
+  // Every known area the arcs reached, and what TSBI made of it (empty if
+  // the event's evaluation was not asked for them).
+  std::vector<tsbi::CandidateReport> considered;
   // Per outcome: the child hypothesis and the area it entered (kNoChild and
   // kNoArea for outcomes too improbable to follow).
   std::vector<uint32_t> children;
@@ -163,9 +166,14 @@ class HybridFilter {
   // are ignored; a result older than the current step is carried forward
   // by each particle's own motion since the snapshot.
   std::vector<EventInput> prepare_event(const area::AreaDecision& decision) const;
-  std::vector<tsbi::Outcome> evaluate(const EventInput& input) const;
+  // `considered`, if given: what TSBI made of every known area
+  // (tsbi::TransitionModel::evaluate), recorded in the event by
+  // apply_event (considered[i] for inputs[i]).
+  std::vector<tsbi::Outcome> evaluate(const EventInput& input,
+                                      std::vector<tsbi::CandidateReport>* considered = nullptr) const;
   void apply_event(const area::AreaDecision& decision, const std::vector<EventInput>& inputs,
-                   const std::vector<std::vector<tsbi::Outcome>>& outcomes);
+                   const std::vector<std::vector<tsbi::Outcome>>& outcomes,
+                   const std::vector<std::vector<tsbi::CandidateReport>>* considered = nullptr);
   // Step 5, TLCA: when a hypothesis dominates, the others are dropped and
   // the shared history forgotten at once; the job says which closures to
   // fine-align (align() is const and thread-safe), apply_alignment fuses

@@ -13,6 +13,8 @@
 //   trajectory.tum                the best path in global coordinates
 //   topological_pmf.csv           P(current area) at every step (Eq. 14)
 //   tsbi_events.csv               every transition evaluated: outcomes, F, p
+//   tsbi_candidates.csv           every known area each event weighed or ruled
+//                                 out, and why (hmt_outputs.h)
 //   summary.json, config_effective.ini
 //   report/index.html ...         with --report: the HTML report (report.h)
 #pragma once

@@ -27,6 +27,14 @@ void write_process_times_csv(const std::string& path, const framework::ProcessTi
 
 void write_tsbi_events_csv(const std::string& path,
                            const std::vector<hybrid::TransitionEvent>& events);
+// tsbi_candidates.csv: per event and hypothesis, every known area the arcs
+// reached and what TSBI made of it (tsbi::CandidateReport): the prior of
+// the robot in the area's frame (mean, standard deviations), the search
+// (wide, starts), the most points a match explained, log F and the verdict
+// (out_of_reach, bound, no_mode, improbable, area_check, outcome). What to
+// read when a loop did not close.
+void write_tsbi_candidates_csv(const std::string& path,
+                               const std::vector<hybrid::TransitionEvent>& events);
 
 // Areas with their global poses and covariances, arcs with mean, covariance
 // and the number of fused measurements.

@@ -65,6 +65,7 @@
 // order, so the result does not depend on the threads).
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -98,6 +99,38 @@ struct Outcome {
   bool is_new() const { return area == topology::kNoArea; }
 };
 
+// What became of one known area at a new-area event: every area with a map
+// that the arcs reach from the current one is weighed or ruled out for a
+// reason, and the reasons say why a loop did or did not close
+// (tsbi_candidates.csv).
+struct CandidateReport {
+  enum class Verdict : uint8_t {
+    kOutOfReach,  // its map's box (or its empty map) is beyond the
+                  // observations' reach from the prior's gate
+    kBound,       // not searched: no pose in the gate lets min_match_ratio
+                  // of the points reach an obstacle (may_reach_ratio), or
+                  // there were no observations
+    kNoMode,      // searched: no match explained min_match_ratio of the
+                  // points inside the prior's gate
+    kImprobable,  // F below min_probability times eta: never an outcome
+    kAreaCheck,   // the best mode failed the area check (same_area)
+    kOutcome,     // an outcome of the event
+  };
+  topology::AreaId area = topology::kNoArea;
+  // The prior of the robot's pose in the area's frame, from the arcs: its
+  // mean and standard deviations (kept for every area of every event, so
+  // not the whole covariance).
+  Pose2D prior_mean;
+  Eigen::Vector3d prior_sd = Eigen::Vector3d::Zero();
+  Verdict verdict = Verdict::kOutOfReach;
+  bool wide = false;     // the prior was searched as a whole (wide search)
+  uint32_t starts = 0;   // matcher starts (0: not searched)
+  double best_ratio = 0.0;  // most points any start's match explained
+  double log_f = 0.0;       // log F (kImprobable, kAreaCheck, kOutcome)
+};
+// The verdict's name in tsbi_candidates.csv.
+const char* verdict_name(CandidateReport::Verdict v);
+
 // F(gamma) of one area map for a given prior. Returns false (no candidate)
 // when no mode passes the gates.
 struct ExpectedLikelihood {
@@ -123,10 +156,13 @@ class TransitionModel {
   // observations `obs` (points in the robot frame). The new-area outcome
   // comes first, known areas (the candidates) follow in ascending id; the
   // probabilities sum to 1. Not const: it keeps the areas' match fields.
+  // `considered`, if given, receives a report of every known area with a
+  // map that the arcs reach, in ascending id.
   std::vector<Outcome> evaluate(const topology::HmtMap& map,
                                 topology::AreaId current,
                                 const topology::PoseGaussian& robot,
-                                const Observations& obs);
+                                const Observations& obs,
+                                std::vector<CandidateReport>* considered = nullptr);
 
   ExpectedLikelihood expected_likelihood(const grid::OccupancyGrid& map,
                                          const topology::PoseGaussian& prior,
@@ -142,11 +178,13 @@ class TransitionModel {
 
  private:
   // The known areas the observations can reach from the prior's gate, each
-  // with its prior (robot pose in the area's frame, from the arcs).
+  // with its prior (robot pose in the area's frame, from the arcs); those
+  // beyond reach into `out_of_reach`, if given.
   std::vector<Outcome> reachable_areas(const topology::HmtMap& map,
                                        topology::AreaId current,
                                        const topology::PoseGaussian& robot,
-                                       const Observations& obs) const;
+                                       const Observations& obs,
+                                       std::vector<CandidateReport>* out_of_reach) const;
   // The match field of each area's map: from the cache, or built (in
   // parallel) and cached. Fields of maps no hypothesis holds are dropped.
   std::vector<std::shared_ptr<const MatchField>> fields_for(
