@@ -1,6 +1,7 @@
 #include "hmt/checkpoint/checkpoint.h"
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -185,6 +186,15 @@ TEST(Checkpoint, DamagedFilesAreRefusedByName) {
   magic[0] = 'X';
   expect_refused(magic, "not an hmt-slam checkpoint");
   expect_refused("", "shorter than its header");
+  // Another format version (an older build's checkpoint), its header
+  // otherwise intact: refused by name, not misread.
+  std::string older = bytes;
+  const uint32_t version = kCheckpointFormatVersion - 1;
+  for (int i = 0; i < 4; ++i) older[8 + i] = static_cast<char>((version >> (8 * i)) & 0xff);
+  const auto crc = static_cast<uint32_t>(crc32(0, reinterpret_cast<const Bytef*>(older.data()), 28));
+  for (int i = 0; i < 4; ++i) older[28 + i] = static_cast<char>((crc >> (8 * i)) & 0xff);
+  expect_refused(older, "format version " + std::to_string(version) + ", this hmt-slam reads version " +
+                            std::to_string(kCheckpointFormatVersion));
 
   try {
     read_identity(bad + ".missing");
