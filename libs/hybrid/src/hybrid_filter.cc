@@ -281,9 +281,9 @@ void HybridFilter::apply_event(const area::AreaDecision& decision,
     for (size_t j = 0; j < followed[i].outcomes.size(); ++j, ++slot)
       child_log_p.push_back(keep[slot] ? std::optional<double>(log_p[slot]) : std::nullopt);
     const size_t k = input_of[i];
-    std::vector<Hypothesis> children = branch(std::move(parent), decision, inputs[k],
-                                              outcomes[k], followed[i].outcomes, child_log_p);
-    if (considered) transitions_.back().considered = (*considered)[k];  // branch()'s event
+    std::vector<Hypothesis> children =
+        branch(std::move(parent), decision, inputs[k], outcomes[k],
+               considered ? &(*considered)[k] : nullptr, followed[i].outcomes, child_log_p);
     for (auto& c : children) hyps_.push_back(std::move(c));
   }
   settle();
@@ -309,6 +309,7 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
                                              const area::AreaDecision& decision,
                                              const EventInput& input,
                                              const std::vector<tsbi::Outcome>& outcomes,
+                                             const std::vector<tsbi::CandidateReport>* considered,
                                              const std::vector<size_t>& follow,
                                              const std::vector<std::optional<double>>& log_p) {
   const AreaId c = parent.current_area();
@@ -332,6 +333,7 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
   ev.parent_probability = input.probability;
   ev.from_area = c;
   ev.outcomes = outcomes;
+  if (considered) ev.considered = *considered;
   if (opt_.hybrid.record_closure_views) {
     ev.observed_points =
         std::make_shared<const std::vector<Point2D>>(input.observations.points.hit);

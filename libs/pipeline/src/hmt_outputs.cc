@@ -104,13 +104,9 @@ void write_tsbi_candidates_csv(const std::string& path,
         << ev.from_area << ',' << r.area << ',' << fmt("%.3f", r.prior_mean.x) << ','
         << fmt("%.3f", r.prior_mean.y) << ',' << fmt("%.4f", r.prior_mean.theta) << ','
         << fmt("%.3f", r.prior_sd(0)) << ',' << fmt("%.3f", r.prior_sd(1)) << ','
-        << fmt("%.4f", r.prior_sd(2)) << ',' << (r.wide ? 1 : 0) << ',' << r.starts << ',';
-      o << fmt("%.4f", r.best_ratio) << ',';
-      // log F exists only where a mode passed the gates.
-      if (r.verdict == tsbi::CandidateReport::Verdict::kImprobable ||
-          r.verdict == tsbi::CandidateReport::Verdict::kAreaCheck ||
-          r.verdict == tsbi::CandidateReport::Verdict::kOutcome)
-        o << fmt("%.4f", r.log_f);
+        << fmt("%.4f", r.prior_sd(2)) << ',' << (r.wide ? 1 : 0) << ',' << r.starts << ','
+        << fmt("%.4f", r.best_ratio) << ',';
+      if (r.has_log_f()) o << fmt("%.4f", r.log_f);
       o << ',' << tsbi::verdict_name(r.verdict) << '\n';
     }
   write_text_atomically(path, o.str());

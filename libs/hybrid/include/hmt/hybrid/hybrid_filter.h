@@ -270,9 +270,11 @@ class HybridFilter {
                            const std::vector<tsbi::Outcome>& outcomes) const;
   // The children of `parent` for the followed outcomes `follow`: those with
   // a log probability in `log_p` (the ones pruning keeps) are built with it.
+  // The event is recorded with its outcomes and, if given, `considered`.
   std::vector<Hypothesis> branch(Hypothesis parent, const area::AreaDecision& decision,
                                  const EventInput& input,
                                  const std::vector<tsbi::Outcome>& outcomes,
+                                 const std::vector<tsbi::CandidateReport>* considered,
                                  const std::vector<size_t>& follow,
                                  const std::vector<std::optional<double>>& log_p);
   // Which hypotheses of these log weights pruning keeps (the most probable

@@ -126,7 +126,11 @@ struct CandidateReport {
   bool wide = false;     // the prior was searched as a whole (wide search)
   uint32_t starts = 0;   // matcher starts (0: not searched)
   double best_ratio = 0.0;  // most points any start's match explained
-  double log_f = 0.0;       // log F (kImprobable, kAreaCheck, kOutcome)
+  double log_f = 0.0;       // log F, where a mode passed the gates (has_log_f)
+  bool has_log_f() const {
+    return verdict == Verdict::kImprobable || verdict == Verdict::kAreaCheck ||
+           verdict == Verdict::kOutcome;
+  }
 };
 // The verdict's name in tsbi_candidates.csv.
 const char* verdict_name(CandidateReport::Verdict v);
