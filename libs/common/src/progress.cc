@@ -35,7 +35,9 @@ Progress::Progress(std::string unit, size_t total, FILE* out,
 
 std::string Progress::line(size_t done, const std::string& extra) const {
   const double el = seconds(Clock::now() - start_);
-  const double rate = el > 0 ? done / el : 0.0;
+  // The recent rate, the average since the start until it has one.
+  const double recent = recent_.rate();
+  const double rate = recent > 0 ? recent : el > 0 ? done / el : 0.0;
   // Of the whole: done / total, or the share given when the total is unknown.
   const double share = total_ ? static_cast<double>(done) / static_cast<double>(total_)
                               : std::clamp(fraction_, 0.0, 1.0);
@@ -64,6 +66,7 @@ void Progress::update(size_t done, const std::string& extra) {
   done_ = done;
   if (!enabled_) return;
   const auto now = Clock::now();
+  recent_.add(seconds(now - start_), done);
   const double since = seconds(now - last_);
   if (tty_) {
     if (since < 0.1 && done != total_) return;

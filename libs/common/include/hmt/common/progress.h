@@ -1,11 +1,14 @@
 // Progress of a long run on stderr: a bar redrawn in place on a terminal
 // (done/total, rate, ETA and caller-supplied fields), one plain line every few
-// seconds otherwise (logs, CI).
+// seconds otherwise (logs, CI). The rate and the ETA are those of the last
+// 30 seconds (RecentRate): a scan costs more as the map grows.
 #pragma once
 
 #include <chrono>
 #include <cstdio>
 #include <string>
+
+#include "hmt/common/recent_rate.h"
 
 namespace hmt {
 
@@ -37,6 +40,7 @@ class Progress {
   size_t done_ = 0;
   double fraction_ = 0.0;
   std::chrono::steady_clock::time_point start_, last_;
+  RecentRate recent_{30.0};
 };
 
 }  // namespace hmt
