@@ -220,7 +220,7 @@ std::vector<EventInput> HybridFilter::prepare_event(const area::AreaDecision& de
     }
     const auto& ro = opt_.rbpf;
     in.observations = tsbi::gather_observations(posed, now, ro.matcher.max_range, ro.resolution,
-                                                opt_.tsbi.max_points);
+                                                opt_.tsbi.max_points, opt_.tsbi.evidence_cell);
     inputs.push_back(std::move(in));
   }
   return inputs;

@@ -1,10 +1,15 @@
 #include "hmt/tsbi/observations.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+
 namespace hmt::tsbi {
 
 Observations gather_observations(const std::vector<PosedScan>& scans,
-                                            const Pose2D& now, double max_range,
-                                            double free_step, int max_points) {
+                                 const Pose2D& now, double max_range,
+                                 double free_step, int max_points, double evidence_cell) {
   metric_slam::ScanPoints all;
   Observations out;
   for (const PosedScan& ps : scans) {
@@ -21,6 +26,16 @@ Observations gather_observations(const std::vector<PosedScan>& scans,
   out.points = metric_slam::spread_subset(all, max_points);
   if (!out.points.hit.empty())
     out.scale = static_cast<double>(all.hit.size()) / static_cast<double>(out.points.hit.size());
+  if (evidence_cell > 0) {
+    std::vector<std::pair<int64_t, int64_t>> cells;
+    cells.reserve(all.hit.size());
+    for (const Point2D& p : all.hit)
+      cells.emplace_back(static_cast<int64_t>(std::floor(p.x / evidence_cell)),
+                         static_cast<int64_t>(std::floor(p.y / evidence_cell)));
+    std::sort(cells.begin(), cells.end());
+    out.surface_cells =
+        static_cast<size_t>(std::unique(cells.begin(), cells.end()) - cells.begin());
+  }
   return out;
 }
 

@@ -9,6 +9,8 @@ void TsbiOptions::load(Config& cfg, const std::string& s) {
   min_match_ratio = cfg.get_double(s, "min_match_ratio", min_match_ratio);
   gate = cfg.get_double(s, "gate", gate);
   max_points = cfg.get_int(s, "max_points", max_points);
+  evidence_cell = cfg.get_double(s, "evidence_cell", evidence_cell);
+  evidence_gain = cfg.get_double(s, "evidence_gain", evidence_gain);
   start_sigmas = cfg.get_double(s, "start_sigmas", start_sigmas);
   prior_std_xy = cfg.get_double(s, "prior_std_xy", prior_std_xy);
   prior_std_theta = cfg.get_double(s, "prior_std_theta", prior_std_theta);
@@ -58,6 +60,8 @@ void TsbiOptions::load(Config& cfg, const std::string& s) {
   require(min_match_ratio > 0 && min_match_ratio <= 1, s, "min_match_ratio", "in (0, 1]");
   require(gate > 0, s, "gate", "> 0");
   require(max_points >= 10, s, "max_points", ">= 10");
+  require(evidence_cell >= 0 && evidence_cell <= 100, s, "evidence_cell", "in [0, 100] (0: off)");
+  require(evidence_gain > 0 && std::isfinite(evidence_gain), s, "evidence_gain", "> 0");
   require(start_sigmas >= 0 && start_sigmas <= 5, s, "start_sigmas", "in [0, 5]");
   require(prior_std_xy > 0, s, "prior_std_xy", "> 0");
   require(prior_std_theta > 0, s, "prior_std_theta", "> 0");

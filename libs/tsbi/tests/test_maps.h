@@ -31,14 +31,15 @@ inline Eigen::Matrix3d diag(double sxy, double sth) {
   return Eigen::Vector3d(sxy * sxy, sxy * sxy, sth * sth).asDiagonal();
 }
 
-// The scans taken at `poses` (world), seen from the last one.
+// The scans taken at `poses` (world), seen from the last one; `evidence_cell`
+// > 0 counts the cells their returns fall in (gather_observations).
 inline Observations observe(const std::vector<testing_sim::Segment>& world,
-                            const std::vector<Pose2D>& poses) {
+                            const std::vector<Pose2D>& poses, double evidence_cell = 0.0) {
   std::vector<LaserScan> scans;
   for (const Pose2D& p : poses) scans.push_back(scan_at(world, p));
   std::vector<PosedScan> posed;
   for (size_t i = 0; i < poses.size(); ++i) posed.push_back({poses[i], &scans[i]});
-  Observations obs = gather_observations(posed, poses.back(), 20.0, 0.05, 600);
+  Observations obs = gather_observations(posed, poses.back(), 20.0, 0.05, 600, evidence_cell);
   obs.scans.clear();  // they pointed into `scans`, which dies here
   return obs;
 }

@@ -236,6 +236,27 @@ TEST(TransitionModel, BroaderPriorLowersTheExpectedLikelihood) {
   EXPECT_FALSE(far.candidate);
 }
 
+TEST(TransitionModel, ReturnsOfOneSurfaceAddNoEvidence) {
+  // The same scan twice is no more evidence than once when the evidence is
+  // the cells the returns hit; counted return by return it is twice as much.
+  TwoKnownAreas s;
+  const auto world = testing_sim::office_world();
+  const Pose2D truth(3, 3, 0.2);
+  const PoseGaussian prior(truth, diag(0.3, 0.1));
+  const TransitionModel m = model();
+  const auto& map = *s.map.area(1).map;
+  const auto once = m.expected_likelihood(map, prior, observe(world, {truth}, 0.25));
+  const auto twice = m.expected_likelihood(map, prior, observe(world, {truth, truth}, 0.25));
+  ASSERT_TRUE(once.candidate);
+  ASSERT_TRUE(twice.candidate);
+  EXPECT_NEAR(twice.log_f, once.log_f, 0.05 * std::fabs(once.log_f));
+  const auto once_each = m.expected_likelihood(map, prior, observe(world, {truth}));
+  const auto twice_each = m.expected_likelihood(map, prior, observe(world, {truth, truth}));
+  ASSERT_TRUE(once_each.candidate);
+  ASSERT_TRUE(twice_each.candidate);
+  EXPECT_GT(twice_each.log_f, once_each.log_f + 0.5 * std::fabs(once_each.log_f));
+}
+
 TEST(TransitionModel, TheCurrentAreaAndAreasWithoutMapsAreNotCandidates) {
   TwoKnownAreas s;
   const Pose2D truth(14, 5, 0.0);  // in area 2's part of the office
@@ -486,6 +507,33 @@ TEST(Observations, ReExpressedFromTheCurrentPose) {
   // The end point (3, 0) in the common frame, seen from `now` facing +y.
   EXPECT_NEAR(pts.hit[0].x, 0.0, 1e-9);
   EXPECT_NEAR(pts.hit[0].y, -3.0, 1e-9);
+}
+
+TEST(Observations, CountTheDistinctCellsTheReturnsFallIn) {
+  // Three returns 2 mm apart on one wall (a fourth beam gave none) and one
+  // 1 m away: two 0.25 m cells, however many times the scan is taken.
+  LaserScan scan;
+  scan.angle_min = 0.0;
+  scan.angle_increment = 0.001;
+  scan.ranges = {2.1, 2.1, 2.1, 0.0};
+  scan.valid = {1, 1, 1, 1};
+  scan.max_range = 30.0f;
+  LaserScan other;
+  other.angle_min = 0.5;
+  other.angle_increment = 0.1;
+  other.ranges = {2.0};
+  other.valid = {1};
+  other.max_range = 30.0f;
+  const Pose2D now;
+  const auto one = gather_observations({{now, &scan}, {now, &other}}, now, 20.0, 0.05, 100, 0.25);
+  EXPECT_EQ(one.points.hit.size(), 4u);
+  EXPECT_EQ(one.surface_cells, 2u);
+  const auto two = gather_observations({{now, &scan}, {now, &other}, {now, &scan}}, now, 20.0,
+                                       0.05, 100, 0.25);
+  EXPECT_EQ(two.points.hit.size(), 7u);
+  EXPECT_EQ(two.surface_cells, 2u);
+  // Not counted unless asked.
+  EXPECT_EQ(gather_observations({{now, &scan}}, now, 20.0, 0.05, 100).surface_cells, 0u);
 }
 
 }  // namespace

@@ -22,15 +22,19 @@ struct PosedScan {
 struct Observations {
   metric_slam::ScanPoints points;
   double scale = 1.0;
+  // The distinct cells of the evidence grid the end points fall in (all of
+  // them, not only those kept); 0 when not counted.
+  size_t surface_cells = 0;
   // The scans themselves, posed relative to `now` (for the area check).
   std::vector<PosedScan> scans;
 };
 
 // Every scan's end points (and free probes) re-expressed from `now`, then at
 // most `max_points` of them, evenly spread. `free_step` is the probe's
-// distance back along the beam (the grid resolution).
+// distance back along the beam (the grid resolution). `evidence_cell` > 0:
+// also counts the distinct cells of that size (m) the end points fall in.
 Observations gather_observations(const std::vector<PosedScan>& scans,
-                                            const Pose2D& now, double max_range,
-                                            double free_step, int max_points);
+                                 const Pose2D& now, double max_range,
+                                 double free_step, int max_points, double evidence_cell = 0.0);
 
 }  // namespace hmt::tsbi

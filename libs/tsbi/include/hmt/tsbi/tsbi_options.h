@@ -24,6 +24,18 @@ struct TsbiOptions {
   double gate = 16.27;
   // The observations are at most this many points (evenly spread).
   int max_points = 600;
+  // How much the observations weigh. Returns from one patch of surface (a
+  // near wall hit by many beams, the overlap of the new area's keyframes)
+  // are one piece of evidence, not many: the log-likelihood of the points
+  // kept stands for the number of distinct evidence_cell x evidence_cell
+  // cells (m) the returns fall in, divided by evidence_gain. Intel's events
+  // hold 8.7 returns a 0.25 m cell, so 30 / 8.7 = 3.5 gives them the weight
+  // they had with every return counted and tempered by [metric_slam]
+  // likelihood_gain (30); the simulated campus's long-range 180-degree scans
+  // hold 5.3 a cell, and its loops close (docs/measurements.md).
+  // evidence_cell 0: every return counts, tempered by likelihood_gain.
+  double evidence_cell = 0.25;
+  double evidence_gain = 3.5;
   // Match starts along each principal axis of the prior, at -k, 0, +k
   // standard deviations (27 starts for 1.5).
   double start_sigmas = 1.5;
