@@ -494,13 +494,19 @@ TEST(LogEvidence, SumsTheOutcomesFAgainstEta) {
   EXPECT_DOUBLE_EQ(log_evidence({}, 8.0), 0.0);
 }
 
-TEST(Observations, ReExpressedFromTheCurrentPose) {
+// A scan of the given ranges (0: no return) from `angle_min`, `increment` apart.
+LaserScan fan(double angle_min, double increment, const std::vector<float>& ranges) {
   LaserScan scan;
-  scan.angle_min = 0.0;
-  scan.angle_increment = 0.1;
-  scan.ranges = {2.0};
-  scan.valid = {1};
+  scan.angle_min = angle_min;
+  scan.angle_increment = increment;
+  scan.ranges = ranges;
+  scan.valid.assign(ranges.size(), 1);
   scan.max_range = 30.0f;
+  return scan;
+}
+
+TEST(Observations, ReExpressedFromTheCurrentPose) {
+  const LaserScan scan = fan(0.0, 0.1, {2.0});
   const Pose2D earlier(1, 0, 0), now(0, 0, M_PI / 2);
   const auto pts = gather_observations({{earlier, &scan}}, now, 20.0, 0.05, 100).points;
   ASSERT_EQ(pts.hit.size(), 1u);
@@ -512,18 +518,8 @@ TEST(Observations, ReExpressedFromTheCurrentPose) {
 TEST(Observations, CountTheDistinctCellsTheReturnsFallIn) {
   // Three returns 2 mm apart on one wall (a fourth beam gave none) and one
   // 1 m away: two 0.25 m cells, however many times the scan is taken.
-  LaserScan scan;
-  scan.angle_min = 0.0;
-  scan.angle_increment = 0.001;
-  scan.ranges = {2.1, 2.1, 2.1, 0.0};
-  scan.valid = {1, 1, 1, 1};
-  scan.max_range = 30.0f;
-  LaserScan other;
-  other.angle_min = 0.5;
-  other.angle_increment = 0.1;
-  other.ranges = {2.0};
-  other.valid = {1};
-  other.max_range = 30.0f;
+  const LaserScan scan = fan(0.0, 0.001, {2.1, 2.1, 2.1, 0.0});
+  const LaserScan other = fan(0.5, 0.1, {2.0});
   const Pose2D now;
   const auto one = gather_observations({{now, &scan}, {now, &other}}, now, 20.0, 0.05, 100, 0.25);
   EXPECT_EQ(one.points.hit.size(), 4u);
