@@ -30,6 +30,7 @@ void KeyframeGraphOptions::load(Config& cfg, const std::string& s) {
   match_inflation = cfg.get_double(s, "match_inflation", match_inflation);
   match_std_xy = cfg.get_double(s, "match_std_xy", match_std_xy);
   match_std_theta = cfg.get_double(s, "match_std_theta", match_std_theta);
+  match_reuse = cfg.get_bool(s, "match_reuse", match_reuse);
   const std::string k = cfg.get_string(s, "robust_kernel", kernel == RobustKernel::kDcs ? "dcs" : "huber");
   require(k == "dcs" || k == "huber", s, "robust_kernel", "dcs or huber");
   kernel = k == "dcs" ? RobustKernel::kDcs : RobustKernel::kHuber;

@@ -204,6 +204,16 @@ Motion motion_between(const PathTable& table, uint64_t from, uint64_t to) {
   return m;
 }
 
+// A keyframe's match in one area, as an earlier round left it: the start
+// it was matched from, and the result (no information when the match
+// explained too little of the scan or its Hessian was unusable).
+struct PastMatch {
+  int area = 0;  // variable index
+  Pose2D start;
+  Pose2D result;
+  std::optional<Eigen::Matrix3d> information;
+};
+
 // The axis-aligned box of an area's grid placed at `pose`.
 struct Box {
   double min_x, min_y, max_x, max_y;
@@ -461,22 +471,32 @@ class Graph {
     for (size_t a = 0; a < A; ++a)
       if (const auto& g = map_.area(area_ids_[a]).map) boxes[a] = global_box(*g, x_[a]);
     std::vector<std::vector<Edge>> found(nodes_.size());
-    std::vector<size_t> tried(nodes_.size(), 0);
-    pool_.parallel_for(nodes_.size(), [&](size_t i) { match_node(i, boxes, &found[i], &tried[i]); });
+    std::vector<size_t> tried(nodes_.size(), 0), reused(nodes_.size(), 0);
+    past_.resize(nodes_.size());
+    pool_.parallel_for(nodes_.size(), [&](size_t i) {
+      match_node(i, boxes, &found[i], &tried[i], &reused[i]);
+    });
     report_.matches_tried = 0;
+    report_.matches_reused = 0;
     for (size_t i = 0; i < nodes_.size(); ++i) {
       report_.matches_tried += tried[i];
+      report_.matches_reused += reused[i];
       edges->insert(edges->end(), found[i].begin(), found[i].end());
     }
   }
 
+  // Matches keyframe i in every area whose box holds it, into `out`; its
+  // slot of past_ (written by this call only) keeps the matches for the
+  // next round.
   void match_node(size_t i, const std::vector<std::optional<Box>>& boxes, std::vector<Edge>* out,
-                  size_t* tried) const {
+                  size_t* tried, size_t* reused) {
     const size_t A = area_ids_.size();
     const metric_slam::MatcherOptions& mo = matcher_.options();
     const Pose2D& g = x_[A + i];
     const LogStep* step = steps_(nodes_[i].step);
     if (!step) return;
+    std::vector<PastMatch> past;
+    past.swap(past_[i]);
     // The scan's points, prepared once for all the areas (their grids share
     // a resolution; prepared again for one that does not).
     metric_slam::ScanPoints pts;
@@ -491,23 +511,47 @@ class Graph {
       if (pts.hit.empty()) continue;
       ++*tried;
       const Pose2D guess = x_[a].inverse() + g;
-      metric_slam::MatchScore score;
-      Eigen::Matrix3d hessian;
-      const Pose2D m = matcher_.optimize(grid, guess, pts, &score, &hessian);
-      if (score.matched < opt_.match_min_ratio * static_cast<double>(pts.hit.size())) continue;
-      const Pose2D moved_by = m - guess;
+      PastMatch match = reusable(past, static_cast<int>(a), guess);
+      if (match.area >= 0) {
+        ++*reused;
+      } else {
+        match = {static_cast<int>(a), guess, Pose2D(), std::nullopt};
+        metric_slam::MatchScore score;
+        Eigen::Matrix3d hessian;
+        match.result = matcher_.optimize(grid, guess, pts, &score, &hessian);
+        if (score.matched >= opt_.match_min_ratio * static_cast<double>(pts.hit.size()))
+          match.information = match_information(hessian, opt_);
+      }
+      past_[i].push_back(match);
+      if (!match.information) continue;
+      const Pose2D moved_by = match.result - guess;
       if (moved_by.norm() > opt_.match_gate_xy || std::fabs(moved_by.theta) > opt_.match_gate_theta)
         continue;
-      const std::optional<Eigen::Matrix3d> info = match_information(hessian, opt_);
-      if (!info) continue;
       Edge e;
       e.from = static_cast<int>(a);
       e.to = node_var(i);
-      e.mean = m;
-      e.information = *info;
+      e.mean = match.result;
+      e.information = *match.information;
       e.kind = Kind::kMatch;
       out->push_back(e);
     }
+  }
+
+  // The past match in area `a` whose start lies within the matcher's finest
+  // step of `guess`, or one with area -1 when there is none (or reuse is off).
+  PastMatch reusable(const std::vector<PastMatch>& past, int a, const Pose2D& guess) const {
+    PastMatch none;
+    none.area = -1;
+    if (!opt_.match_reuse) return none;
+    for (const PastMatch& p : past) {
+      if (p.area != a) continue;
+      const Pose2D d = guess - p.start;
+      if (d.norm() < matcher_.finest_linear_step() &&
+          std::fabs(d.theta) < matcher_.finest_angular_step())
+        return p;
+      return none;
+    }
+    return none;
   }
 
   // The largest distance and the largest heading change of a keyframe from
@@ -550,6 +594,7 @@ class Graph {
   std::map<AreaId, int> area_var_;
   std::vector<AreaId> unreachable_;
   std::vector<Edge> fixed_;  // (a), (b), (c): the same in every round
+  std::vector<std::vector<PastMatch>> past_;  // per keyframe, the last round's matches
   std::vector<Pose2D> x_;    // areas, then keyframes
   KeyframeGraphReport report_;
 };

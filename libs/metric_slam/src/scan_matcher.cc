@@ -243,6 +243,10 @@ double ScanMatcher::finest_angular_step() const {
   return opt_.angular_step / std::ldexp(1.0, std::max(0, opt_.refinements - 1));
 }
 
+double ScanMatcher::finest_linear_step() const {
+  return opt_.linear_step / std::ldexp(1.0, std::max(0, opt_.refinements - 1));
+}
+
 double ScanMatcher::heading_basin(double far, int window, double resolution) {
   return (window + 0.5) * resolution / std::max(far, 1e-9);
 }

@@ -355,6 +355,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, InputSteps& steps, const LogOpe
                                      {"arcs", r.arcs},
                                      {"matches", r.matches}}},
                     {"matches_tried", r.matches_tried},
+                    {"matches_reused", r.matches_reused},
                     {"down_weighted", r.down_weighted},
                     {"rounds", r.rounds},
                     {"converged", r.converged},

@@ -62,6 +62,12 @@ struct KeyframeGraphOptions {
   // it is made in.
   double match_std_xy = 0.02;      // [m]
   double match_std_theta = 0.005;  // [rad]
+  // In the rounds after the first, a keyframe whose start in an area moved
+  // by less than the matcher's finest hill-climbing step (both in x, y and
+  // in heading) since it was last matched there keeps that match (its gate
+  // checked again from the new start): to the matcher the two starts are
+  // the same start, and matching again would only add its half-cell jitter.
+  bool match_reuse = true;
 
   // Robust kernel on (c) arcs and (d) matches: Huber or dynamic covariance
   // scaling, with its threshold in squared Mahalanobis distance.

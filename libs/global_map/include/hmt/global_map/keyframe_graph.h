@@ -28,7 +28,9 @@
 //       estimate; kept only if it explains a large fraction of the points
 //       and stays within a gate of the estimate. Information: the matcher's
 //       Gauss-Newton Hessian divided by an inflation for the correlated
-//       beams, plus a floor covariance.
+//       beams, plus a floor covariance. A keyframe whose start in an area
+//       moved less than the matcher's finest step since the last round
+//       keeps that round's match there (match_reuse).
 // (c) and (d) go through a robust kernel (Huber or DCS), so a wrong arc or
 // match is down-weighted instead of bending the map. The cost is minimised
 // by iteratively reweighted Gauss-Newton with step halving, the normal
@@ -86,8 +88,10 @@ struct KeyframeGraphReport {
   size_t consecutive = 0;
   size_t arcs = 0;
   size_t matches = 0;
-  // Matches tried in the last round (kept + rejected by ratio or gate).
+  // Matches tried in the last round (kept + rejected by ratio or gate), and
+  // how many of them reused an earlier round's match (match_reuse).
   size_t matches_tried = 0;
+  size_t matches_reused = 0;
   // Robust constraints beyond the kernel's threshold at the final estimate.
   size_t down_weighted = 0;
   int rounds = 0;

@@ -80,8 +80,9 @@ class ScanMatcher {
                   const ScanPoints& scan, MatchScore* best,
                   Eigen::Matrix3d* information = nullptr) const;
 
-  // The hill climbing's last (finest) angular step.
+  // The hill climbing's last (finest) angular and linear steps.
   double finest_angular_step() const;
+  double finest_linear_step() const;
   // The heading error that moves a point at range `far` by the reach of a
   // search window of `window` cells: beyond it the point finds no obstacle
   // and no longer guides the match. A scan's basin is that of its far points
