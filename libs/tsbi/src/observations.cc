@@ -27,6 +27,7 @@ Observations gather_observations(const std::vector<PosedScan>& scans,
   if (!out.points.hit.empty())
     out.scale = static_cast<double>(all.hit.size()) / static_cast<double>(out.points.hit.size());
   if (evidence_cell > 0) {
+    out.evidence_cell = evidence_cell;
     std::vector<std::pair<int64_t, int64_t>> cells;
     cells.reserve(all.hit.size());
     for (const Point2D& p : all.hit)

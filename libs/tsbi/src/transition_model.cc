@@ -256,11 +256,12 @@ TransitionModel::Search TransitionModel::prepare_search(const grid::OccupancyGri
   Search out;
   const metric_slam::ScanPoints& obs = observations.points;
   if (obs.hit.empty()) return out;
-  // Log-likelihoods of the kept points stand for all the points: for the
-  // distinct cells they hit, tempered by evidence_gain (one patch of
-  // surface is one piece of evidence however many returns it gave), or
-  // for every return, tempered as the metric filter's weights.
-  out.scale = opt_.evidence_cell > 0 && observations.surface_cells > 0
+  // Log-likelihoods of the kept points stand for all the points, as the
+  // observations were gathered: for the distinct cells they hit, tempered
+  // by evidence_gain (one patch of surface is one piece of evidence however
+  // many returns it gave), or for every return, tempered as the metric
+  // filter's weights.
+  out.scale = observations.evidence_cell > 0
                   ? static_cast<double>(observations.surface_cells) / opt_.evidence_gain /
                         static_cast<double>(obs.hit.size())
                   : observations.scale / gain_;

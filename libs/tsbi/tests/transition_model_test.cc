@@ -255,6 +255,16 @@ TEST(TransitionModel, ReturnsOfOneSurfaceAddNoEvidence) {
   ASSERT_TRUE(once_each.candidate);
   ASSERT_TRUE(twice_each.candidate);
   EXPECT_GT(twice_each.log_f, once_each.log_f + 0.5 * std::fabs(once_each.log_f));
+  // The weighting follows how the observations were gathered, whatever the
+  // model's own evidence_cell (which only says how to gather them).
+  TsbiOptions o;
+  o.log_eta = 10.0;
+  o.evidence_cell = 0.0;
+  const TransitionModel per_return(o, metric_slam::MatcherOptions{}, 30.0, area::AreaOptions{});
+  EXPECT_EQ(per_return.expected_likelihood(map, prior, observe(world, {truth}, 0.25)).log_f,
+            once.log_f);
+  EXPECT_EQ(per_return.expected_likelihood(map, prior, observe(world, {truth})).log_f,
+            once_each.log_f);
 }
 
 TEST(TransitionModel, TheCurrentAreaAndAreasWithoutMapsAreNotCandidates) {
@@ -524,12 +534,15 @@ TEST(Observations, CountTheDistinctCellsTheReturnsFallIn) {
   const auto one = gather_observations({{now, &scan}, {now, &other}}, now, 20.0, 0.05, 100, 0.25);
   EXPECT_EQ(one.points.hit.size(), 4u);
   EXPECT_EQ(one.surface_cells, 2u);
+  EXPECT_EQ(one.evidence_cell, 0.25);
   const auto two = gather_observations({{now, &scan}, {now, &other}, {now, &scan}}, now, 20.0,
                                        0.05, 100, 0.25);
   EXPECT_EQ(two.points.hit.size(), 7u);
   EXPECT_EQ(two.surface_cells, 2u);
   // Not counted unless asked.
-  EXPECT_EQ(gather_observations({{now, &scan}}, now, 20.0, 0.05, 100).surface_cells, 0u);
+  const auto uncounted = gather_observations({{now, &scan}}, now, 20.0, 0.05, 100);
+  EXPECT_EQ(uncounted.surface_cells, 0u);
+  EXPECT_EQ(uncounted.evidence_cell, 0.0);
 }
 
 }  // namespace

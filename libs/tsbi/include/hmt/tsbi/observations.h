@@ -22,8 +22,13 @@ struct PosedScan {
 struct Observations {
   metric_slam::ScanPoints points;
   double scale = 1.0;
-  // The distinct cells of the evidence grid the end points fall in (all of
-  // them, not only those kept); 0 when not counted.
+  // How much the points weigh (TransitionModel): evidence_cell > 0, the
+  // size (m) of the cells counted in surface_cells, the distinct cells all
+  // the end points (not only those kept) fall in; the points then stand for
+  // surface_cells pieces of evidence. evidence_cell 0: not counted, and
+  // every return counts (scale). Set together by gather_observations(), so
+  // the weighting always follows how the observations were gathered.
+  double evidence_cell = 0.0;
   size_t surface_cells = 0;
   // The scans themselves, posed relative to `now` (for the area check).
   std::vector<PosedScan> scans;

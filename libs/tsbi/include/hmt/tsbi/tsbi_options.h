@@ -34,6 +34,8 @@ struct TsbiOptions {
   // likelihood_gain (30); the simulated campus's long-range 180-degree scans
   // hold 5.3 a cell, and its loops close (docs/measurements.md).
   // evidence_cell 0: every return counts, tempered by likelihood_gain.
+  // The caller gathers the observations with it (gather_observations()),
+  // and they carry it to the model.
   double evidence_cell = 0.25;
   double evidence_gain = 3.5;
   // Match starts along each principal axis of the prior, at -k, 0, +k
