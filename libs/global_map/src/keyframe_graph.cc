@@ -511,8 +511,9 @@ class Graph {
       if (pts.hit.empty()) continue;
       ++*tried;
       const Pose2D guess = x_[a].inverse() + g;
-      PastMatch match = reusable(past, static_cast<int>(a), guess);
-      if (match.area >= 0) {
+      PastMatch match;
+      if (const PastMatch* kept = reusable(past, static_cast<int>(a), guess)) {
+        match = *kept;
         ++*reused;
       } else {
         match = {static_cast<int>(a), guess, Pose2D(), std::nullopt};
@@ -537,21 +538,17 @@ class Graph {
     }
   }
 
-  // The past match in area `a` whose start lies within the matcher's finest
-  // step of `guess`, or one with area -1 when there is none (or reuse is off).
-  PastMatch reusable(const std::vector<PastMatch>& past, int a, const Pose2D& guess) const {
-    PastMatch none;
-    none.area = -1;
-    if (!opt_.match_reuse) return none;
-    for (const PastMatch& p : past) {
-      if (p.area != a) continue;
-      const Pose2D d = guess - p.start;
-      if (d.norm() < matcher_.finest_linear_step() &&
-          std::fabs(d.theta) < matcher_.finest_angular_step())
-        return p;
-      return none;
-    }
-    return none;
+  // The past match in area `a` if its start lies within the matcher's finest
+  // step of `guess`; nullptr when there is none (or reuse is off).
+  const PastMatch* reusable(const std::vector<PastMatch>& past, int a, const Pose2D& guess) const {
+    if (!opt_.match_reuse) return nullptr;
+    const auto p = std::find_if(past.begin(), past.end(),
+                                [a](const PastMatch& m) { return m.area == a; });
+    if (p == past.end()) return nullptr;
+    const Pose2D d = guess - p->start;
+    const bool same_start = d.norm() < matcher_.finest_linear_step() &&
+                            std::fabs(d.theta) < matcher_.finest_angular_step();
+    return same_start ? &*p : nullptr;
   }
 
   // The largest distance and the largest heading change of a keyframe from

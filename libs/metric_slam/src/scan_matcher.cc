@@ -239,13 +239,14 @@ void ScanMatcher::score_same_heading_in(const grid::OccupancyGrid& map, const Po
   for (size_t k = 0; k < n; ++k) out[k] = sums[k].score(scan.hit.size(), inv_2sigma2_);
 }
 
-double ScanMatcher::finest_angular_step() const {
-  return opt_.angular_step / std::ldexp(1.0, std::max(0, opt_.refinements - 1));
+// The hill climbing halves its steps refinements - 1 times.
+double ScanMatcher::finest_step(double first) const {
+  return first / std::ldexp(1.0, std::max(0, opt_.refinements - 1));
 }
 
-double ScanMatcher::finest_linear_step() const {
-  return opt_.linear_step / std::ldexp(1.0, std::max(0, opt_.refinements - 1));
-}
+double ScanMatcher::finest_angular_step() const { return finest_step(opt_.angular_step); }
+
+double ScanMatcher::finest_linear_step() const { return finest_step(opt_.linear_step); }
 
 double ScanMatcher::heading_basin(double far, int window, double resolution) {
   return (window + 0.5) * resolution / std::max(far, 1e-9);

@@ -106,6 +106,8 @@ class ScanMatcher {
   grid::LogOdds occupied_threshold() const { return occ_threshold_; }
 
  private:
+  // The last step of a hill climbing that starts with steps of `first`.
+  double finest_step(double first) const;
   // The score with window radius `window`; once the scan can no longer
   // score above `limit`, it stops and returns the lowest log-likelihood.
   MatchScore score(const grid::OccupancyGrid& map, const Pose2D& pose,
