@@ -55,6 +55,14 @@ TEST(AppRun, MalagaOneLoopMatchesIndependentReference) {
       << "final pose " << got.x << " " << got.y << " " << got.theta;
   EXPECT_LT(std::fabs(wrap_angle(got.theta - ref.theta)), 0.03);
   EXPECT_NEAR(summary["final_pose"]["x"].get<double>(), got.x, 1e-5);
+  // The metric filter's scans matched their maps: hardly a particle-step
+  // fell back to the odometry, and the run gave no warning about it.
+  const auto& m = summary["metric_slam"];
+  EXPECT_GT(m["scans_filtered"].get<int>(), 150);
+  EXPECT_LE(m["scans_filtered"].get<int>(), 225);
+  EXPECT_GE(m["particle_moves"].get<int>(), (m["scans_filtered"].get<int>() - 1) * 10);
+  EXPECT_LT(m["odometry_fallback_fraction"].get<double>(), 0.01);
+  EXPECT_EQ(r.err.find("odometry alone"), std::string::npos) << r.err;
 
   // The HMT outputs, and the loop closed by inference when the robot comes
   // back to its start.
@@ -238,6 +246,25 @@ TEST(AppRun, EffectiveConfigRecordsOverrides) {
   const std::string eff = slurp(dir + "/o/config_effective.ini");
   EXPECT_NE(eff.find("particles = 7"), std::string::npos) << eff;
   EXPECT_NE(eff.find("[scan_matcher]"), std::string::npos);
+}
+
+TEST(AppRun, ScansThatMatchNoMapAreReported) {
+  // Matched within 1 m, Malaga's outdoor scans keep almost no returns: the
+  // particles move by the odometry. The summary counts it and the run says
+  // so, naming what to check; the outputs are still written.
+  const std::string dir = temp_dir("fallbacks");
+  const AppResult r = run_app("run --config config/default.ini --quiet --set input.max_steps=60 "
+                              "--set scan_matcher.max_range=1 --out '" + dir + "/o'", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto m = nlohmann::json::parse(slurp(dir + "/o/summary.json"))["metric_slam"];
+  const double moves = m["particle_moves"].get<double>();
+  ASSERT_GT(moves, 0);
+  EXPECT_DOUBLE_EQ(m["odometry_fallback_fraction"].get<double>(),
+                   m["odometry_fallbacks"].get<double>() / moves);
+  EXPECT_GT(m["odometry_fallback_fraction"].get<double>(), 0.5);
+  EXPECT_NE(r.err.find("the odometry alone moved them"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("max_range"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(dir + "/o/map.png"));
 }
 
 TEST(AppRun, ProgressEndsWithEveryScanCounted) {

@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -72,6 +74,12 @@ std::vector<std::string> run_args(const std::string& out) {
   return {"run", "--quiet", "--set", "output.checkpoint_every=8", "--out", out};
 }
 
+// summary.json's counts of the metric filter: results, which a checkpoint
+// carries over, unlike its timings.
+nlohmann::json metric_counts(const std::string& out) {
+  return nlohmann::json::parse(slurp(out + "/summary.json")).at("metric_slam");
+}
+
 TEST(Checkpoint, KilledAtRandomMomentsAndResumedEndsWithTheSameBytes) {
   const std::string dir = temp_dir("checkpoint_kill");
   // The reference: the embedded Malaga log (its loop closed) without a stop,
@@ -127,6 +135,7 @@ TEST(Checkpoint, KilledAtRandomMomentsAndResumedEndsWithTheSameBytes) {
   EXPECT_GE(resumes, 3);
   for (const char* f : kResults)
     EXPECT_TRUE(slurp(dir + "/whole/" + f) == slurp(out + "/" + f)) << f << " differs";
+  EXPECT_EQ(metric_counts(dir + "/whole"), metric_counts(out));
   EXPECT_FALSE(fs::exists(ckpt));
   // No temporary file of an interrupted write is left in a finished folder.
   for (const auto& e : fs::directory_iterator(out))
@@ -180,6 +189,7 @@ TEST(Checkpoint, SigintStopsWithAClearMessageAndAResumableCheckpoint) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* f : kResults)
     EXPECT_TRUE(slurp(dir + "/whole/" + f) == slurp(dir + "/out/" + f)) << f << " differs";
+  EXPECT_EQ(metric_counts(dir + "/whole"), metric_counts(dir + "/out"));
 }
 
 // A live run cannot be resumed: it says so and writes no checkpoint.

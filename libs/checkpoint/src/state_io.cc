@@ -313,7 +313,7 @@ void serialize(A& ar, Particle& p) {
 }
 template <class A>
 void serialize(A& ar, RbpfStats& s) {
-  ar(s.steps, s.skipped_steps, s.resamplings, s.odometry_fallbacks);
+  ar(s.steps, s.skipped_steps, s.resamplings, s.particle_moves, s.odometry_fallbacks);
 }
 template <class A>
 void serialize(A& ar, GridRbpf& f) {

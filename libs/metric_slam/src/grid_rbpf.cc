@@ -275,6 +275,7 @@ void GridRbpf::move(size_t i) {
 
 void GridRbpf::end_step() {
   if (!step_) return;
+  stats_.particle_moves += step_->fell_back.size();
   for (char f : step_->fell_back) stats_.odometry_fallbacks += (f != 0);
   std::vector<double> after(particles_.size());
   for (size_t i = 0; i < particles_.size(); ++i) after[i] = particles_[i].log_weight;

@@ -42,6 +42,13 @@ TEST(GridRbpf, TracksBetterThanOdometry) {
   EXPECT_LT(err, 0.15) << "odometry error was " << odo_err;
   EXPECT_LT(err, odo_err);
   EXPECT_EQ(f.best().path.size(), run.log.steps.size());
+  // Every particle moved at every filtered step (the first scan only
+  // starts the map), and in this world the scans match: no particle-step
+  // fell back to the odometry.
+  const RbpfStats& s = f.stats();
+  EXPECT_GT(s.steps - s.skipped_steps, run.log.steps.size() / 2);
+  EXPECT_EQ(s.particle_moves, (s.steps - 1 - s.skipped_steps) * f.particles().size());
+  EXPECT_EQ(s.odometry_fallbacks, 0u);
 }
 
 // The odometry of a few steps reports a turn the robot did not make (a
@@ -215,6 +222,8 @@ TEST(GridRbpf, OdometryProposalStillRuns) {
   GridRbpf f(o);
   for (const auto& st : run.log.steps) f.process(st);
   EXPECT_EQ(f.stats().odometry_fallbacks, (run.log.steps.size() - 1) * 10);
+  // Every particle-step fell back: the counts agree.
+  EXPECT_EQ(f.stats().particle_moves, f.stats().odometry_fallbacks);
 }
 
 TEST(GridRbpf, NewAreaAndReloadInterface) {

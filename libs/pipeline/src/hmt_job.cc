@@ -75,6 +75,20 @@ nlohmann::json closure_json(const tlca::ClosureReport& c) {
           {"reason", c.reason}};
 }
 
+// What the metric filter of the most probable hypothesis did, over the whole
+// log (a hypothesis carries its parent's counts). A large share of
+// particle-steps that fell back to the odometry says the scans did not
+// match the maps: a laser pose, matching range or odometry to check.
+nlohmann::json metric_summary(const metric_slam::RbpfStats& s) {
+  const double moves = static_cast<double>(s.particle_moves);
+  return {{"scans_filtered", s.steps - s.skipped_steps},
+          {"resamplings", s.resamplings},
+          {"particle_moves", s.particle_moves},
+          {"odometry_fallbacks", s.odometry_fallbacks},
+          {"odometry_fallback_fraction",
+           moves > 0 ? static_cast<double>(s.odometry_fallbacks) / moves : 0.0}};
+}
+
 // What the filter did (summary.json), from a finished system.
 nlohmann::json run_summary(const framework::HmtSystem& system) {
   const hybrid::HybridFilter& filter = system.filter();
@@ -98,6 +112,8 @@ nlohmann::json run_summary(const framework::HmtSystem& system) {
   j["loop_closures"] = closures;
   j["max_hypotheses_alive"] = st.max_hypotheses_alive;
   j["hypotheses_at_end"] = filter.hypotheses().size();
+  j["metric_slam"] = metric_summary(filter.hypotheses().empty() ? metric_slam::RbpfStats{}
+                                                              : filter.best().filter.stats());
   j["forgotten_path_entries"] = st.forgotten_path_entries;
   // Per-process totals (s): where the time went (the threads overlap).
   const auto& pt = system.times();
@@ -252,6 +268,15 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, InputSteps& steps, const LogOpe
   write_tsbi_candidates_csv(out_dir + "/tsbi_candidates.csv", filter.transitions());
   if (probe) write_rtl_csv(out_dir + "/rtl.csv", probe->samples());
   nlohmann::json j = run_summary(system);
+  // Most particle-steps moved by the odometry alone: the map is the
+  // odometry's, whatever the outputs look like. Said, not hidden in the
+  // summary.
+  if (const double f = j["metric_slam"]["odometry_fallback_fraction"].get<double>(); f > 0.5)
+    std::fprintf(stderr,
+                 "hmt-slam: warning: at %.0f%% of the particles' steps the scan matched no "
+                 "map and the odometry alone moved them; check [scan_matcher] max_range, "
+                 "the laser's pose and the log's ranges\n",
+                 100.0 * f);
   j["input"] = source;
   j["particles"] = opt.rbpf.particles;
   j["area_tau"] = opt.area.partition.tau;

@@ -125,6 +125,7 @@ JobSummary run_metric_job(const JobOptions& opt, InputSteps& steps,
   j["map_memory_mb"] = static_cast<double>(filter.map_memory_bytes()) / (1024.0 * 1024.0);
   j["final_pose"] = {{"x", best.pose.x}, {"y", best.pose.y}, {"theta", best.pose.theta}};
   j["resamplings"] = filter.stats().resamplings;
+  j["particle_moves"] = filter.stats().particle_moves;
   j["odometry_fallbacks"] = filter.stats().odometry_fallbacks;
   j["scans_filtered"] = filter.stats().steps - filter.stats().skipped_steps;
   j["final_ess"] = filter.ess();

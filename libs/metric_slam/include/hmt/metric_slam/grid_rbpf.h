@@ -53,7 +53,8 @@ struct RbpfStats {
   size_t steps = 0;               // scans given to process()
   size_t skipped_steps = 0;       // of which too little motion to filter
   size_t resamplings = 0;
-  size_t odometry_fallbacks = 0;  // particle-steps where matching failed
+  size_t particle_moves = 0;      // particle-steps filtered (a particle moved by a scan)
+  size_t odometry_fallbacks = 0;  // of which matching failed
 };
 
 // A seed scan for a new area's map: the scan taken at `path_index` of the
