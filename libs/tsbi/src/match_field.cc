@@ -53,27 +53,40 @@ MatchField::MatchField(const grid::OccupancyGrid& map, grid::LogOdds occupied)
   // row (the same minima as relaxing the four in turn, cell by cell, with
   // no bounds test per neighbour: fields of 100 m areas have millions of
   // cells).
-  std::vector<uint8_t> t(static_cast<size_t>(w_));
-  auto pass = [&](uint8_t* row, const uint8_t* seen, int dir) {
+  //
+  // The width in a local: a byte store may alias any member, so loops
+  // bounded by w_ would load it again after every cell and would not be
+  // vectorised.
+  const int W = w_;
+  std::vector<uint8_t> t(static_cast<size_t>(W));
+  auto pass = [&t, W](uint8_t* row, const uint8_t* seen, int dir) {
     if (seen) {
-      for (int x = 0; x < w_; ++x) {
-        int m = seen[x];
-        if (x > 0) m = std::min<int>(m, seen[x - 1]);
-        if (x + 1 < w_) m = std::min<int>(m, seen[x + 1]);
-        t[static_cast<size_t>(x)] = static_cast<uint8_t>(std::min<int>(row[x], m + 1));
+      uint8_t* out = t.data();
+      // m + 1 <= 256 and row[x] <= 255: the least fits a byte.
+      auto relax = [&](int x, int m) {
+        out[x] = static_cast<uint8_t>(std::min<int>(row[x], m + 1));
+      };
+      if (W == 1) {
+        relax(0, seen[0]);
+      } else {
+        relax(0, std::min(seen[0], seen[1]));
+        for (int x = 1; x + 1 < W; ++x)
+          relax(x, std::min(std::min(seen[x - 1], seen[x]), seen[x + 1]));
+        relax(W - 1, std::min(seen[W - 2], seen[W - 1]));
       }
       std::copy(t.begin(), t.end(), row);
     }
     if (dir > 0) {
-      for (int x = 1; x < w_; ++x) row[x] = static_cast<uint8_t>(std::min<int>(row[x], row[x - 1] + 1));
+      for (int x = 1; x < W; ++x) row[x] = static_cast<uint8_t>(std::min<int>(row[x], row[x - 1] + 1));
     } else {
-      for (int x = w_ - 2; x >= 0; --x) row[x] = static_cast<uint8_t>(std::min<int>(row[x], row[x + 1] + 1));
+      for (int x = W - 2; x >= 0; --x) row[x] = static_cast<uint8_t>(std::min<int>(row[x], row[x + 1] + 1));
     }
   };
   uint8_t* d = d_.data();
-  const size_t w = static_cast<size_t>(w_);
-  for (int y = 0; y < h_; ++y) pass(d + y * w, y > 0 ? d + (y - 1) * w : nullptr, +1);
-  for (int y = h_ - 1; y >= 0; --y) pass(d + y * w, y + 1 < h_ ? d + (y + 1) * w : nullptr, -1);
+  const size_t w = static_cast<size_t>(W);
+  const int H = h_;
+  for (int y = 0; y < H; ++y) pass(d + y * w, y > 0 ? d + (y - 1) * w : nullptr, +1);
+  for (int y = H - 1; y >= 0; --y) pass(d + y * w, y + 1 < H ? d + (y + 1) * w : nullptr, -1);
 }
 
 int MatchField::outside_distance(int ix, int iy) const {
