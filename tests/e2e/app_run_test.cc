@@ -182,6 +182,11 @@ TEST(AppRun, MetricBaselineMatchesIndependentReference) {
   ASSERT_EQ(traj.size(), 225u);
   const Pose2D ref = reference_final_pose(), got = traj.back().pose;
   EXPECT_LT(std::hypot(got.x - ref.x, got.y - ref.y), 0.3);
+  // Its scans matched: no warning, hardly a fallback.
+  const auto s = nlohmann::json::parse(slurp(dir + "/out/summary.json"));
+  EXPECT_LT(s["odometry_fallback_fraction"].get<double>(), 0.01);
+  EXPECT_GT(s["particle_moves"].get<double>(), 0);
+  EXPECT_EQ(r.err.find("odometry alone"), std::string::npos) << r.err;
 }
 
 TEST(AppRun, SameSeedSameBytesWhateverTheThreads) {
@@ -265,6 +270,18 @@ TEST(AppRun, ScansThatMatchNoMapAreReported) {
   EXPECT_NE(r.err.find("the odometry alone moved them"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("max_range"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::exists(dir + "/o/map.png"));
+
+  // The metric-only tool fails the same way and says the same, with the
+  // counts at its summary's top level.
+  const AppResult mr = run_app("metric --config config/default.ini --quiet --set input.max_steps=60 "
+                               "--set scan_matcher.max_range=1 --out '" + dir + "/m'", dir);
+  ASSERT_EQ(mr.exit_code, 0) << mr.err;
+  const auto ms = nlohmann::json::parse(slurp(dir + "/m/summary.json"));
+  EXPECT_GT(ms["odometry_fallback_fraction"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(ms["odometry_fallback_fraction"].get<double>(),
+                   ms["odometry_fallbacks"].get<double>() / ms["particle_moves"].get<double>());
+  EXPECT_NE(mr.err.find("the odometry alone moved them"), std::string::npos) << mr.err;
+  EXPECT_TRUE(fs::exists(dir + "/m/map.png"));
 }
 
 TEST(AppRun, ProgressEndsWithEveryScanCounted) {

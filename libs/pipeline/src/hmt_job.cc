@@ -26,6 +26,7 @@
 #include "hmt/framework/hmt_system.h"
 #include "hmt/io/tum.h"
 #include "hmt/pipeline/hmt_outputs.h"
+#include "hmt/pipeline/metric_summary.h"
 #include "hmt/pipeline/report.h"
 #include "hmt/pipeline/rtl_probe.h"
 #include "hmt/pipeline/stop_signal.h"
@@ -73,20 +74,6 @@ nlohmann::json closure_json(const tlca::ClosureReport& c) {
           {"inlier_ratio", c.inlier_ratio},
           {"overlap_points", c.overlap_points},
           {"reason", c.reason}};
-}
-
-// What the metric filter of the most probable hypothesis did, over the whole
-// log (a hypothesis carries its parent's counts). A large share of
-// particle-steps that fell back to the odometry says the scans did not
-// match the maps: a laser pose, matching range or odometry to check.
-nlohmann::json metric_summary(const metric_slam::RbpfStats& s) {
-  const double moves = static_cast<double>(s.particle_moves);
-  return {{"scans_filtered", s.steps - s.skipped_steps},
-          {"resamplings", s.resamplings},
-          {"particle_moves", s.particle_moves},
-          {"odometry_fallbacks", s.odometry_fallbacks},
-          {"odometry_fallback_fraction",
-           moves > 0 ? static_cast<double>(s.odometry_fallbacks) / moves : 0.0}};
 }
 
 // What the filter did (summary.json), from a finished system.
@@ -268,15 +255,9 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, InputSteps& steps, const LogOpe
   write_tsbi_candidates_csv(out_dir + "/tsbi_candidates.csv", filter.transitions());
   if (probe) write_rtl_csv(out_dir + "/rtl.csv", probe->samples());
   nlohmann::json j = run_summary(system);
-  // Most particle-steps moved by the odometry alone: the map is the
-  // odometry's, whatever the outputs look like. Said, not hidden in the
-  // summary.
-  if (const double f = j["metric_slam"]["odometry_fallback_fraction"].get<double>(); f > 0.5)
-    std::fprintf(stderr,
-                 "hmt-slam: warning: at %.0f%% of the particles' steps the scan matched no "
-                 "map and the odometry alone moved them; check [scan_matcher] max_range, "
-                 "the laser's pose and the log's ranges\n",
-                 100.0 * f);
+  // The best hypothesis's filter, over the whole log (a hypothesis
+  // carries its parent's counts).
+  warn_if_scans_did_not_match(j["metric_slam"]);
   j["input"] = source;
   j["particles"] = opt.rbpf.particles;
   j["area_tau"] = opt.area.partition.tau;

@@ -13,7 +13,9 @@
 #include "hmt/grid/map_export.h"
 #include "hmt/io/tum.h"
 #include "hmt/pipeline/input_steps.h"
+#include "hmt/pipeline/metric_summary.h"
 #include "hmt/metric_slam/grid_rbpf.h"
+#include "hmt/pipeline/metric_summary.h"
 
 namespace hmt::pipeline {
 namespace fs = std::filesystem;
@@ -124,12 +126,11 @@ JobSummary run_metric_job(const JobOptions& opt, InputSteps& steps,
   j["peak_rss_mb"] = static_cast<double>(sum.peak_rss_bytes) / (1024.0 * 1024.0);
   j["map_memory_mb"] = static_cast<double>(filter.map_memory_bytes()) / (1024.0 * 1024.0);
   j["final_pose"] = {{"x", best.pose.x}, {"y", best.pose.y}, {"theta", best.pose.theta}};
-  j["resamplings"] = filter.stats().resamplings;
-  j["particle_moves"] = filter.stats().particle_moves;
-  j["odometry_fallbacks"] = filter.stats().odometry_fallbacks;
-  j["scans_filtered"] = filter.stats().steps - filter.stats().skipped_steps;
+  const nlohmann::json counts = metric_summary(filter.stats());
+  j.update(counts);
   j["final_ess"] = filter.ess();
   write_text_atomically(out_dir + "/summary.json", j.dump(2) + "\n");
+  warn_if_scans_did_not_match(counts);
   return sum;
 }
 
