@@ -15,7 +15,6 @@
 #include "hmt/pipeline/input_steps.h"
 #include "hmt/pipeline/metric_summary.h"
 #include "hmt/metric_slam/grid_rbpf.h"
-#include "hmt/pipeline/metric_summary.h"
 
 namespace hmt::pipeline {
 namespace fs = std::filesystem;

@@ -14,15 +14,14 @@ nlohmann::json metric_summary(const metric_slam::RbpfStats& s) {
            moves > 0 ? static_cast<double>(s.odometry_fallbacks) / moves : 0.0}};
 }
 
-bool warn_if_scans_did_not_match(const nlohmann::json& summary) {
+void warn_if_scans_did_not_match(const nlohmann::json& summary) {
   const double f = summary.at("odometry_fallback_fraction").get<double>();
-  if (!(f > 0.5)) return false;
+  if (!(f > 0.5)) return;
   std::fprintf(stderr,
                "hmt-slam: warning: at %.0f%% of the particles' steps the scan matched no "
                "map and the odometry alone moved them; check [scan_matcher] max_range, "
                "the laser's pose and the log's ranges\n",
                100.0 * f);
-  return true;
 }
 
 }  // namespace hmt::pipeline

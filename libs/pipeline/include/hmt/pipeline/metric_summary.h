@@ -16,8 +16,7 @@ nlohmann::json metric_summary(const metric_slam::RbpfStats& s);
 
 // Most particle-steps moved by the odometry alone (fraction above one
 // half): the map is the odometry's, whatever the outputs look like. Said on
-// stderr, naming what to check, rather than left in the summary. Returns
-// whether it warned.
-bool warn_if_scans_did_not_match(const nlohmann::json& summary);
+// stderr, naming what to check, rather than left in the summary.
+void warn_if_scans_did_not_match(const nlohmann::json& summary);
 
 }  // namespace hmt::pipeline
