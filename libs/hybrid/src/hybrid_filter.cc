@@ -170,7 +170,7 @@ std::optional<area::Keyframe> HybridFilter::keyframe_due(const LogStep& step) {
     const Pose2D now = path.back();
     double len = 0.0;
     for (size_t i = 1; i < path.size(); ++i) len += (path[i] - path[i - 1]).norm();
-    const double sxy = opt_.hybrid.arc_std_xy + opt_.hybrid.arc_std_xy_per_metre * len;
+    const double sxy = opt_.hybrid.arc_floor_xy(len);
     const Eigen::Matrix3d c = spread(current_poses(f), f.weights(), now);
     kf.uncertainty = std::sqrt(sxy * sxy + 0.5 * std::max(0.0, c(0, 0) + c(1, 1)));
     kf.distinctiveness = area::scan_distinctiveness(step.scan, po);
@@ -385,8 +385,7 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
       const std::vector<Pose2D> origins = child.filter.start_new_area(seeds, best);
       PoseGaussian arc(origins[best], spread(origins, w, origins[best]));
       const double len = origins[best].norm();
-      const double sxy = opt_.hybrid.arc_std_xy + opt_.hybrid.arc_std_xy_per_metre * len;
-      const double sth = opt_.hybrid.arc_std_theta + opt_.hybrid.arc_std_theta_per_metre * len;
+      const double sxy = opt_.hybrid.arc_floor_xy(len), sth = opt_.hybrid.arc_floor_theta(len);
       arc.cov.diagonal() += Eigen::Vector3d(sxy * sxy, sxy * sxy, sth * sth);
       entered = child.map.next_area_id();
       topology::ReferenceFrame frame;

@@ -1,5 +1,7 @@
 #include "hmt/hybrid/hybrid_options.h"
 
+#include <algorithm>
+
 namespace hmt::hybrid {
 
 void HybridOptions::load(Config& cfg, const std::string& s) {
@@ -15,6 +17,7 @@ void HybridOptions::load(Config& cfg, const std::string& s) {
   arc_std_xy_per_metre = cfg.get_double(s, "arc_std_xy_per_metre", arc_std_xy_per_metre);
   arc_std_theta_per_metre =
       cfg.get_double(s, "arc_std_theta_per_metre", arc_std_theta_per_metre);
+  arc_std_theta_max = cfg.get_double(s, "arc_std_theta_max", arc_std_theta_max);
   require(max_hypotheses >= 1 && max_hypotheses <= 64, s, "max_hypotheses", "in [1, 64]");
   require(prune_probability >= 0 && prune_probability < 0.5, s, "prune_probability",
           "in [0, 0.5)");
@@ -25,6 +28,14 @@ void HybridOptions::load(Config& cfg, const std::string& s) {
   require(arc_std_theta > 0, s, "arc_std_theta", "> 0");
   require(arc_std_xy_per_metre >= 0, s, "arc_std_xy_per_metre", ">= 0");
   require(arc_std_theta_per_metre >= 0, s, "arc_std_theta_per_metre", ">= 0");
+  require(arc_std_theta_max >= 0, s, "arc_std_theta_max", ">= 0 (0: no cap)");
+}
+
+double HybridOptions::arc_floor_theta(double metres) const {
+  const double grown = arc_std_theta + arc_std_theta_per_metre * metres;
+  // The cap bounds the growth only: never below the constant part.
+  return arc_std_theta_max > 0 ? std::max(arc_std_theta, std::min(grown, arc_std_theta_max))
+                               : grown;
 }
 
 }  // namespace hmt::hybrid

@@ -57,6 +57,16 @@ struct HybridOptions {
   double arc_std_theta = 0.02;         // [rad]
   double arc_std_xy_per_metre = 0.01;  // [m/m]
   double arc_std_theta_per_metre = 0.002;  // [rad/m]
+  // The heading floor grows with the distance only up to this: a filter
+  // that matches its scans against its map keeps the heading it holds,
+  // so its heading error does not keep growing with the distance (its 95th
+  // percentile over 80-160 m of path is at most 0.092 rad on every shared
+  // log). Never below arc_std_theta; 0: no cap.
+  double arc_std_theta_max = 0.1;  // [rad]
+  // The floors (standard deviations: x and y, heading) of a new arc between
+  // two area origins `metres` apart.
+  double arc_floor_xy(double metres) const { return arc_std_xy + arc_std_xy_per_metre * metres; }
+  double arc_floor_theta(double metres) const;
   // Not an INI key: set by `hmt-slam run --report`. Every TSBI event then
   // keeps what its known-area outcomes were weighed on (TransitionEvent::
   // observed_points, candidate_maps), for the report to draw; off, runs keep
