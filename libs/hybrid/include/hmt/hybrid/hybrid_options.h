@@ -64,7 +64,8 @@ struct HybridOptions {
   // log). Never below arc_std_theta; 0: no cap.
   double arc_std_theta_max = 0.1;  // [rad]
   // The floors (standard deviations: x and y, heading) of a new arc between
-  // two area origins `metres` apart.
+  // two area origins `metres` apart; the position's also stands for the
+  // error a keyframe accumulates over `metres` travelled in its area.
   double arc_floor_xy(double metres) const { return arc_std_xy + arc_std_xy_per_metre * metres; }
   double arc_floor_theta(double metres) const;
   // Not an INI key: set by `hmt-slam run --report`. Every TSBI event then
