@@ -16,6 +16,12 @@ turned (a block of corridors drawn a few degrees off the rest), and which of
 two trajectories keeps its corridors square. Legs within 10 degrees of a
 diagonal of the grid are left out of the RMS (a corridor off the grid).
 
+With a reference, the turns too: runs of steps where the reference turns
+faster than 0.04 rad a step, widened by 3 steps each side, that turn by at
+least 0.8 rad in all. For each, the trajectory's heading change across it
+minus the reference's; their RMS is the heading error a turn adds (a
+trajectory of the log's own odometry gives the wheels' figure to compare).
+
 Usage: leg_headings.py TRAJECTORY [REFERENCE] [--min-length M] [--tolerance T] [--json]
 Poses are matched by index (one line per scan in both files; TUM or
 "t x y theta", gzip when the name ends in .gz). Exit 2 on bad arguments,
@@ -76,6 +82,29 @@ def rms(dev, length):
     return float(math.sqrt(np.sum(length[on] * dev[on] ** 2) / np.sum(length[on])))
 
 
+TURN_RATE = 0.04   # rad a step: the reference is turning
+TURN_MARGIN = 3    # steps added either side of a turn
+TURN_MIN = 0.8     # rad: a turn, not a wiggle
+
+
+def turns(theta):
+    """(first, last) index pairs of the turns of an unwrapped heading."""
+    fast = np.abs(np.diff(theta)) > TURN_RATE
+    out, i, n = [], 0, len(theta)
+    while i < n - 1:
+        if not fast[i]:
+            i += 1
+            continue
+        j = i
+        while j < n - 1 and fast[j]:
+            j += 1
+        a, b = max(0, i - TURN_MARGIN), min(n - 1, j + TURN_MARGIN)
+        if abs(theta[b] - theta[a]) >= TURN_MIN:
+            out.append((a, b))
+        i = j
+    return out
+
+
 def option(args, name, default):
     if name not in args:
         return default
@@ -122,6 +151,15 @@ def main(argv):
         per.append(dev)
         out.setdefault("axis_deg", []).append(axis)
         out.setdefault("rms_deg", []).append(rms(dev, length) if legs else None)
+    if len(poses) == 2:
+        ref_theta = np.unwrap(poses[1][:, 3])
+        est_theta = np.unwrap(poses[0][:, 3])
+        found = turns(ref_theta)
+        err = np.array([(est_theta[b] - est_theta[a]) - (ref_theta[b] - ref_theta[a])
+                        for a, b in found])
+        out["turns"] = len(found)
+        out["turn_error_rms_deg"] = (float(np.degrees(np.sqrt(np.mean(err ** 2))))
+                                     if len(found) else None)
     for k, (i, j) in enumerate(legs):
         out["legs"].append({"first": i, "last": j,
                             "length_m": float(math.hypot(*(poses[-1][j, 1:3] - poses[-1][i, 1:3]))),
@@ -132,6 +170,10 @@ def main(argv):
     names = ["trajectory", "reference"][:len(poses)]
     print(f"{len(legs)} straight legs of at least {min_length:g} m (within {tolerance:g} m of "
           f"a line) in the {names[-1]}")
+    if "turns" in out:
+        t = out["turn_error_rms_deg"]
+        print(f"{out['turns']} turns of the reference; heading error a turn adds: "
+              + ("-" if t is None else f"{t:.2f} deg RMS"))
     if not legs:
         return 0
     print("poses          length   deviation from the grid (deg): " + "  ".join(names))

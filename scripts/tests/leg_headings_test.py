@@ -90,6 +90,18 @@ class LegHeadings(unittest.TestCase):
         self.assertAlmostEqual(abs(out["legs"][1]["deviation_deg"][0]), 45.0, delta=1e-6)
         self.assertAlmostEqual(out["rms_deg"][0], 0.0, places=6)
 
+    def test_the_turns_and_what_each_adds(self):
+        out = self.json_of(self.est, self.ref)
+        # Three corners of 90 degrees; the estimate turns 2 too far at the
+        # first only.
+        self.assertEqual(out["turns"], 3)
+        self.assertAlmostEqual(out["turn_error_rms_deg"], 2.0 / math.sqrt(3), places=6)
+        write_rows(self.est, walk([0, 90, 180, 270]), 9)
+        self.assertAlmostEqual(self.json_of(self.est, self.ref)["turn_error_rms_deg"], 0.0,
+                               places=6)
+        # Alone, a trajectory has no reference to count turns by.
+        self.assertNotIn("turns", self.json_of(self.est))
+
     def test_bad_input_is_refused(self):
         write_rows(self.est, walk([0, 90]), 9)
         r = run(self.est, self.ref)
