@@ -109,6 +109,17 @@ def ate(est, ref):
     return math.sqrt(float((e ** 2).mean())), float(e.max())
 
 
+def load_by_index(paths, script):
+    """The poses of each file, matched by index: SystemExit with the reason
+    when a file is bad or the files hold different numbers of poses."""
+    poses = [load_poses(p) for p in paths]
+    for path, p in zip(paths[1:], poses[1:]):
+        if len(p) != len(poses[0]):
+            raise SystemExit(f"{script}: {paths[0]} has {len(poses[0])} poses and {path} "
+                             f"{len(p)}: matched by index, they must be as many")
+    return poses
+
+
 def load_matched(est_path, ref_path, offset=None):
     """The matched positions of two trajectory files; SystemExit with the
     reason when a file is bad or fewer than half of the poses match."""

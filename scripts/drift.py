@@ -22,7 +22,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from ate import load_poses  # noqa: E402
+from ate import load_by_index  # noqa: E402
 from relation_error import errors, relative  # noqa: E402
 
 BINS = [(2, 5), (5, 10), (10, 20), (20, 40), (40, 80), (80, 160)]
@@ -63,13 +63,9 @@ def main(argv):
         print(__doc__, file=sys.stderr)
         return 2
     try:
-        est, ref = load_poses(args[0]), load_poses(args[1])
+        est, ref = load_by_index(args, "drift.py")
     except SystemExit as e:
         print(e, file=sys.stderr)
-        return 4
-    if len(est) != len(ref):
-        print(f"drift.py: {args[0]} has {len(est)} poses and {args[1]} {len(ref)}: matched by "
-              f"index, they must be as many", file=sys.stderr)
         return 4
     rows = drift(est, ref)
     if "--json" in argv:

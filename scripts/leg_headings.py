@@ -35,7 +35,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from ate import load_poses  # noqa: E402
+from ate import load_by_index  # noqa: E402
 
 OFF_GRID_DEG = 35.0  # |deviation| above this: a corridor off the grid, not an error
 
@@ -131,26 +131,22 @@ def main(argv):
         print(__doc__, file=sys.stderr)
         return 2
     try:
-        paths = args
-        poses = [load_poses(p) for p in paths]
+        poses = load_by_index(args, "leg_headings.py")
     except SystemExit as e:
         print(e, file=sys.stderr)
         return 4
-    if len(poses) == 2 and len(poses[0]) != len(poses[1]):
-        print(f"leg_headings.py: {paths[0]} has {len(poses[0])} poses and {paths[1]} "
-              f"{len(poses[1])}: matched by index, they must be as many", file=sys.stderr)
-        return 4
     legs = straight_legs(poses[-1][:, 1:3], min_length, tolerance)
-    out = {"min_length_m": min_length, "tolerance_m": tolerance, "legs": []}
+    out = {"min_length_m": min_length, "tolerance_m": tolerance, "legs": [],
+           "axis_deg": [], "rms_deg": []}
     per = []
+    length = np.zeros(0)  # the legs' lengths in the last file (the reference)
     for p in poses:
+        dev, axis = np.zeros(0), None
         if legs:
             dev, axis, length = deviations(p[:, 1:3], legs)
-        else:
-            dev, axis, length = np.zeros(0), None, np.zeros(0)
         per.append(dev)
-        out.setdefault("axis_deg", []).append(axis)
-        out.setdefault("rms_deg", []).append(rms(dev, length) if legs else None)
+        out["axis_deg"].append(axis)
+        out["rms_deg"].append(rms(dev, length))
     if len(poses) == 2:
         ref_theta = np.unwrap(poses[1][:, 3])
         est_theta = np.unwrap(poses[0][:, 3])
@@ -161,8 +157,7 @@ def main(argv):
         out["turn_error_rms_deg"] = (float(np.degrees(np.sqrt(np.mean(err ** 2))))
                                      if len(found) else None)
     for k, (i, j) in enumerate(legs):
-        out["legs"].append({"first": i, "last": j,
-                            "length_m": float(math.hypot(*(poses[-1][j, 1:3] - poses[-1][i, 1:3]))),
+        out["legs"].append({"first": i, "last": j, "length_m": float(length[k]),
                             "deviation_deg": [float(d[k]) for d in per]})
     if "--json" in argv:
         print(json.dumps(out, indent=1))
