@@ -119,9 +119,16 @@ bool may_reach_ratio(const MatchField& field, const std::vector<Point2D>& points
   }
   const double r_mean = r_sum / static_cast<double>(n);
   // The same test as the ratio gate it stands for: matched / n >= min_ratio.
-  auto passes = [&](size_t count) {
+  // It only grows with the count, so the least count that passes (n + 1:
+  // none does) is found once with it and the counting below compares
+  // integers, not a division per point.
+  auto ratio_passes = [&](size_t count) {
     return static_cast<double>(count) / static_cast<double>(n) >= min_ratio;
   };
+  size_t need = std::min(n + 1, static_cast<size_t>(std::max(0.0, std::ceil(min_ratio * n))));
+  while (need > 0 && ratio_passes(need - 1)) --need;
+  while (need <= n && !ratio_passes(need)) ++need;
+  auto passes = [need](size_t count) { return count >= need; };
   // An upper bound on the points matched anywhere in the box; counting
   // stops as soon as the box is known to pass or to fail.
   auto bound = [&](const Box& b) {
@@ -132,8 +139,9 @@ bool may_reach_ratio(const MatchField& field, const std::vector<Point2D>& points
     size_t count = 0;
     for (size_t i = 0; i < n; ++i) {
       const Point2D& p = points[i];
-      const int reach = window + static_cast<int>(std::ceil((dxy + range[i] * b.h.z()) / res));
-      if (field.distance_at(px + cs * p.x - sn * p.y, py + sn * p.x + cs * p.y) <= reach) {
+      // d <= window + ceil(x) for integers d, window is d - window - 1 < x.
+      const double x = (dxy + range[i] * b.h.z()) / res;
+      if (field.distance_at(px + cs * p.x - sn * p.y, py + sn * p.x + cs * p.y) - window - 1 < x) {
         if (passes(++count)) break;
       } else if (!passes(count + (n - 1 - i))) {
         break;

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 
 #include "hmt/common/random.h"
@@ -135,6 +136,24 @@ TEST(MayReachRatio, RulesOutPlacesTheMapCannotExplain) {
   // ... and the right prior keeps them.
   EXPECT_TRUE(may_reach_ratio(o.field, o.obs.points.hit, PoseGaussian(o.truth, diag(0.3, 0.1)),
                               16.27, 0.6, window, 1000000));
+}
+
+// The bound compares counts against the least count whose ratio passes:
+// exactly k of n points reachable passes a ratio of k / n and fails one
+// just above it, as the ratio gate's own division decides.
+TEST(MayReachRatio, PassesARatioOfExactlyTheReachablePointsAndNoMore) {
+  grid::OccupancyGrid g(0.05);
+  for (const grid::CellIndex c : {grid::CellIndex{20, 0}, {0, 20}, {-20, 0}})
+    g.mutable_logodds(c) = 100;
+  const MatchField f(g, kOccupied);
+  // Three points on the obstacles, two 5 m from any of them.
+  const std::vector<Point2D> pts{{1.025, 0.025}, {0.025, 1.025}, {-0.975, 0.025},
+                                 {5.0, 5.0}, {-5.0, 5.0}};
+  const PoseGaussian tight(Pose2D(), diag(0.001, 0.001));
+  EXPECT_TRUE(may_reach_ratio(f, pts, tight, 16.27, 3.0 / 5.0, 1, 1000));
+  EXPECT_TRUE(may_reach_ratio(f, pts, tight, 16.27, 0.0, 1, 1000));
+  EXPECT_FALSE(may_reach_ratio(f, pts, tight, 16.27, std::nextafter(3.0 / 5.0, 1.0), 1, 1000));
+  EXPECT_FALSE(may_reach_ratio(f, pts, tight, 16.27, 1.0, 1, 1000));
 }
 
 TEST(MayReachRatio, GivesUpAsMaybeWhenTheBudgetRunsOut) {
