@@ -122,12 +122,8 @@ bool may_reach_ratio(const MatchField& field, const std::vector<Point2D>& points
   // It only grows with the count, so the least count that passes (n + 1:
   // none does) is found once with it and the counting below compares
   // integers, not a division per point.
-  auto ratio_passes = [&](size_t count) {
-    return static_cast<double>(count) / static_cast<double>(n) >= min_ratio;
-  };
-  size_t need = std::min(n + 1, static_cast<size_t>(std::max(0.0, std::ceil(min_ratio * n))));
-  while (need > 0 && ratio_passes(need - 1)) --need;
-  while (need <= n && !ratio_passes(need)) ++need;
+  size_t need = 0;
+  while (need <= n && static_cast<double>(need) / static_cast<double>(n) < min_ratio) ++need;
   auto passes = [need](size_t count) { return count >= need; };
   // An upper bound on the points matched anywhere in the box; counting
   // stops as soon as the box is known to pass or to fail.
