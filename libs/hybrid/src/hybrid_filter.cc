@@ -409,7 +409,14 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
           x = x + (p.path.back() - p.path[snapshot_index]);
         poses.push_back(x);
       }
-      child.filter.load_area(*child.map.area(o.area).map, poses);
+      // The robot's pose now, as the match put it (moved on as the best
+      // particle moved since the snapshot): where the known map does not
+      // reach what the robot sees from there, its last scan goes with it.
+      Pose2D now = o.robot.mean;
+      const metric_slam::Particle& bp_now = child.filter.particles()[best];
+      if (late && snapshot_index < bp_now.path.size())
+        now = now + (bp_now.path.back() - bp_now.path[snapshot_index]);
+      child.filter.load_area(*child.map.area(o.area).map, poses, &now);
       tlca::ClosureRecord rec;
       rec.from = c;
       rec.to = o.area;

@@ -250,6 +250,66 @@ TEST(GridRbpf, NewAreaAndReloadInterface) {
   EXPECT_EQ(f.best().path.size(), 11u);
 }
 
+TEST(GridRbpf, AKnownAreaReenteredAtItsEdgeTakesTheLastScanWhereItCannotTrack) {
+  // Down a corridor with 8 m scans: the map of the first five steps reaches
+  // about 12 m; twenty steps later the robot sees 11-27 m. Re-entering that
+  // map there (as a closure at an area's edge does), the particles find
+  // next to nothing to match unless the last scan comes with them.
+  const auto run = testing_sim::simulate({{1, 1.5, 0}, {45, 1.5, 0}}, 0.7, 13, 0.05,
+                                         testing_sim::corridor_world(60.0), 8.0);
+  ASSERT_GT(run.log.steps.size(), 45u);
+  GridRbpf f(small_filter(1));
+  for (size_t i = 0; i <= 5; ++i) f.process(run.log.steps[i]);
+  const grid::OccupancyGrid known = f.best().map;
+  const size_t now = 25;
+  for (size_t i = 6; i <= now; ++i) f.process(run.log.steps[i]);
+
+  // Where the map tracks the robot (its own map, here), it is taken as it is.
+  const Pose2D at = f.best().pose;  // the known map shares the filter's frame
+  GridRbpf same = f;
+  const grid::OccupancyGrid own = f.best().map;
+  same.load_area(own, {at}, &at);
+  EXPECT_EQ(same.best().map.tile_count(), own.tile_count());
+  grid::CellIndex lo, hi;
+  ASSERT_TRUE(own.bounds(&lo, &hi));
+  for (int y = lo.y; y <= hi.y; ++y)
+    for (int x = lo.x; x <= hi.x; ++x)
+      ASSERT_EQ(same.best().map.logodds({x, y}), own.logodds({x, y}));
+
+  // Where it does not, the last scan fills what it never observed, and only
+  // that: every cell the known map observed keeps its value.
+  GridRbpf bare = f;
+  f.load_area(known, {at}, &at);
+  bare.load_area(known, {at});
+  EXPECT_GT(f.best().map.tile_count(), known.tile_count());
+  EXPECT_EQ(bare.best().map.tile_count(), known.tile_count());
+  ASSERT_TRUE(known.bounds(&lo, &hi));
+  for (int y = lo.y; y <= hi.y; ++y)
+    for (int x = lo.x; x <= hi.x; ++x)
+      if (known.logodds({x, y}) != 0) {
+        ASSERT_EQ(f.best().map.logodds({x, y}), known.logodds({x, y}));
+      }
+
+  const size_t filled_fallbacks = f.stats().odometry_fallbacks;
+  const size_t bare_fallbacks = bare.stats().odometry_fallbacks;
+  for (size_t i = now + 1; i <= now + 15; ++i) {
+    f.process(run.log.steps[i]);
+    bare.process(run.log.steps[i]);
+  }
+  // With the scan, every particle matched every scan; bare, the first scans
+  // after the re-entry matched too little and fell back on the odometry.
+  EXPECT_EQ(f.stats().odometry_fallbacks, filled_fallbacks);
+  EXPECT_GT(bare.stats().odometry_fallbacks, bare_fallbacks);
+  // Along the corridor the position drifts whichever way (the walls do not
+  // fix it); the heading, which the walls do fix, stays as good as it was
+  // at the re-entry.
+  const Pose2D truth = run.truth[now + 15];
+  const Pose2D est = run.truth.front() + f.best().pose;
+  const Pose2D then = run.truth.front() + at;
+  EXPECT_LE(std::fabs(wrap_angle(est.theta - truth.theta)),
+            std::fabs(wrap_angle(then.theta - run.truth[now].theta)) + 0.01);
+}
+
 TEST(GridRbpf, ResizeAndRestart) {
   const auto run = loop_run(15);
   GridRbpf f(small_filter(1));

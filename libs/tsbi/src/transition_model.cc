@@ -15,6 +15,22 @@
 namespace hmt::tsbi {
 namespace {
 
+// How many of the points (robot frame), placed at `pose`, fall within the
+// bounds of the cells `map` observed.
+size_t points_in_extent(const grid::OccupancyGrid& map, const Pose2D& pose,
+                        const std::vector<Point2D>& points) {
+  grid::CellIndex lo, hi;
+  if (!map.bounds(&lo, &hi)) return 0;
+  const double c = std::cos(pose.theta), s = std::sin(pose.theta);
+  size_t n = 0;
+  for (const Point2D& p : points) {
+    const grid::CellIndex q =
+        map.cell_of(pose.x + c * p.x - s * p.y, pose.y + s * p.x + c * p.y);
+    n += q.x >= lo.x && q.x <= hi.x && q.y >= lo.y && q.y <= hi.y;
+  }
+  return n;
+}
+
 using topology::AreaId;
 using topology::PoseGaussian;
 
@@ -195,12 +211,12 @@ std::vector<Pose2D> TransitionModel::bnb_search(const CostStack& stack, const Ma
   q.margin = static_cast<int64_t>(
       std::floor(opt_.bnb_margin * static_cast<double>(pts.size()) * stack.max_cost()));
   // No start is wanted where no mode can pass the ratio gate: a lattice
-  // pose is a start only if its cost is at most that of min_match_ratio of
-  // the points `window` cells from an obstacle (matched, as the ratio gate
-  // counts them) and the rest saturated. (A limit on the search's effort
-  // in the ratio gate's terms, not a proof: the refined mode lies up to
-  // half a lattice step away, and the search's points are a subset.)
-  const double rho = opt_.min_match_ratio;
+  // pose is a start only if its cost is at most that of min_points_explained
+  // of the points `window` cells from an obstacle (matched, as the ratio
+  // gate counts them) and the rest saturated. (A limit on the search's
+  // effort in the ratio gate's terms, not a proof: the refined mode lies up
+  // to half a lattice step away, and the search's points are a subset.)
+  const double rho = opt_.min_points_explained;
   const int near_cost = CostStack::point_cost(matcher_.options().window,
                                               matcher_.options().coarse_window);
   q.max_cost = static_cast<int64_t>(std::floor(
@@ -272,7 +288,7 @@ TransitionModel::Search TransitionModel::prepare_search(const grid::OccupancyGri
   // enough points reach an obstacle: not a candidate, as the matching
   // would conclude, at a fraction of its cost.
   if (opt_.bound_boxes > 0 &&
-      !may_reach_ratio(field, obs.hit, prior, opt_.gate, opt_.min_match_ratio,
+      !may_reach_ratio(field, obs.hit, prior, opt_.gate, opt_.min_points_explained,
                        matcher_.options().window, opt_.bound_boxes))
     return out;
   out.prior_inverse = prior.cov.inverse();
@@ -306,6 +322,7 @@ TransitionModel::Match TransitionModel::match_from(const grid::OccupancyGrid& ma
                                                    const Observations& obs) const {
   Match m;
   m.pose = matcher_.optimize(map, start, obs.points, &m.score, &m.information);
+  m.in_extent = points_in_extent(map, m.pose, obs.points.hit);
   return m;
 }
 
@@ -328,7 +345,10 @@ ExpectedLikelihood TransitionModel::sum_modes(const Search& search,
   for (const Match& m : matches) {
     const Pose2D& x = m.pose;
     const double ratio = static_cast<double>(m.score.matched) / static_cast<double>(n);
-    if (ratio < opt_.min_match_ratio) continue;
+    if (ratio < opt_.min_points_explained) continue;
+    // A matched point may lie up to the matcher's window outside the extent.
+    const double within = std::max<double>(static_cast<double>(m.in_extent), m.score.matched);
+    if (static_cast<double>(m.score.matched) < opt_.min_match_ratio * within) continue;
     const Eigen::Vector3d e = topology::difference(x, prior.mean);
     if (e.dot(S_inv * e) > opt_.gate) continue;
     const bool seen = std::any_of(modes.begin(), modes.end(), [&](const Mode& md) {

@@ -7,6 +7,7 @@ namespace hmt::tsbi {
 void TsbiOptions::load(Config& cfg, const std::string& s) {
   log_eta = cfg.get_double(s, "log_eta", log_eta);
   min_match_ratio = cfg.get_double(s, "min_match_ratio", min_match_ratio);
+  min_points_explained = cfg.get_double(s, "min_points_explained", min_points_explained);
   gate = cfg.get_double(s, "gate", gate);
   max_points = cfg.get_int(s, "max_points", max_points);
   evidence_cell = cfg.get_double(s, "evidence_cell", evidence_cell);
@@ -58,6 +59,8 @@ void TsbiOptions::load(Config& cfg, const std::string& s) {
   require(bound_boxes >= 0, s, "bound_boxes", ">= 0 (0: off)");
   require(std::isfinite(log_eta), s, "log_eta", "finite");
   require(min_match_ratio > 0 && min_match_ratio <= 1, s, "min_match_ratio", "in (0, 1]");
+  require(min_points_explained > 0 && min_points_explained <= 1, s, "min_points_explained",
+          "in (0, 1]");
   require(gate > 0, s, "gate", "> 0");
   require(max_points >= 10, s, "max_points", ">= 10");
   require(evidence_cell >= 0 && evidence_cell <= 100, s, "evidence_cell", "in [0, 100] (0: off)");

@@ -99,6 +99,54 @@ TEST(TransitionModel, KnownAreaAgainWinsWhereTheObservationsMatchIt) {
   EXPECT_NEAR(sum, 1.0, 1e-12);
 }
 
+// A corridor mapped from x = 2-10 with an 8 m laser, so that its map ends
+// near x = 18, seen again from near that end with a longer laser.
+struct CorridorEnd {
+  std::vector<testing_sim::Segment> world = testing_sim::corridor_world(60.0);
+  std::shared_ptr<grid::OccupancyGrid> map = std::make_shared<grid::OccupancyGrid>(0.05);
+  CorridorEnd() {
+    for (double x = 2; x <= 10; x += 1) {
+      const Pose2D p(x, 1.5, 0);
+      grid::insert_scan(*map, p, testing_sim::cast_scan(world, p, 361, M_PI, 8.0, nullptr, 0.0),
+                        grid::InsertionOptions{});
+    }
+  }
+  // The evaluation of this area with the robot at (x, 1.5, 0), after scans
+  // 2 and 1 m back, under a prior 0.1 m / 0.02 rad off.
+  ExpectedLikelihood at(double x) const {
+    const Pose2D truth(x, 1.5, 0);
+    const auto obs = observe(world, {{x - 2, 1.5, 0}, {x - 1, 1.5, 0}, truth});
+    return model().expected_likelihood(*map, PoseGaussian(truth + Pose2D(0.1, -0.05, 0.02),
+                                                          diag(0.1, 0.05)), obs);
+  }
+};
+
+TEST(TransitionModel, AReturnAtAnAreasEdgeIsJudgedOnThePointsWithinItsExtent) {
+  CorridorEnd c;
+  // From x = 15, near half the points lie beyond the map: fewer than
+  // min_match_ratio of all of them are explained, but nearly all of those
+  // within the map's extent are. The area is a candidate, at the true pose.
+  const ExpectedLikelihood edge = c.at(15.0);
+  ASSERT_TRUE(edge.candidate);
+  EXPECT_LT(edge.match_ratio, TsbiOptions{}.min_match_ratio);
+  EXPECT_GE(edge.match_ratio, TsbiOptions{}.min_points_explained);
+  EXPECT_NEAR(edge.robot.mean.y, 1.5, 0.03);
+  EXPECT_NEAR(edge.robot.mean.theta, 0.0, 0.01);
+  // Required to explain min_match_ratio of all the points, it is not.
+  TsbiOptions all;
+  all.log_eta = 10.0;
+  all.min_points_explained = all.min_match_ratio;
+  const TransitionModel strict(all, metric_slam::MatcherOptions{}, 30.0, area::AreaOptions{});
+  const Pose2D truth(15, 1.5, 0);
+  const auto obs = test_maps::observe(c.world, {{13, 1.5, 0}, {14, 1.5, 0}, truth});
+  EXPECT_FALSE(strict.expected_likelihood(*c.map, PoseGaussian(truth + Pose2D(0.1, -0.05, 0.02),
+                                                               diag(0.1, 0.05)), obs)
+                   .candidate);
+  // Two metres further out, what it can explain is under
+  // min_points_explained of the points: too little overlap to judge on.
+  EXPECT_FALSE(c.at(17.0).candidate);
+}
+
 TEST(TransitionModel, NewAreaWinsWhenNoKnownMapExplainsTheObservations) {
   TwoKnownAreas s;
   const Pose2D truth(3, 3, 0.2);

@@ -124,7 +124,15 @@ class GridRbpf {
                                      size_t seed_particle = 0);
   // Re-enter a known area: every particle gets `map` (shared, not copied) and
   // the given pose in that map's frame (one per particle, or one for all).
-  void load_area(const grid::OccupancyGrid& map, const std::vector<Pose2D>& poses);
+  // `view_at`: the robot's pose now in that frame, as the match that chose
+  // the area put it. Where the map cannot track the robot from there (the
+  // last scan, placed at `view_at`, matches less of it than a particle's move
+  // needs, [scan_matcher] min_match_ratio: a return at the edge of an area,
+  // looking out of it), the last scan fills the cells the map never
+  // observed, as it seeds a new area's map; otherwise the map is taken as
+  // it is.
+  void load_area(const grid::OccupancyGrid& map, const std::vector<Pose2D>& poses,
+                 const Pose2D* view_at = nullptr);
   // Draws `n` particles from the current ones by their weights (systematic
   // resampling; weights equal afterwards): how a topological hypothesis's
   // share of the particle budget grows or shrinks. No-op when n is the
@@ -159,6 +167,9 @@ class GridRbpf {
                          const Pose2D& first, MatchScore* score) const;
   void initialise(const LogStep& step);
   void maybe_insert(Particle& p, const LaserScan& scan);
+  // Whether the last scan at `pose` matches enough of `map` for a particle's
+  // move ([scan_matcher] min_match_ratio of its beams).
+  bool tracks_in(const grid::OccupancyGrid& map, const Pose2D& pose) const;
   void resample_if_needed();
   // Replaces the particles by `count` drawn from them by the weights `w`.
   void draw(const std::vector<double>& w, size_t count);

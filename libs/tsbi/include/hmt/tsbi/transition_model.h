@@ -31,6 +31,9 @@
 // along it; then the prior alone decides there). The factor |I + H S|^-1/2
 // is the Occam factor: a broad prior (a long loop) needs a better match. F
 // sums the distinct modes that explain at least min_match_ratio of the points
+// within the area's extent (the bounds of the cells its map observed: the
+// points beyond it are seen from where the map never reached, and say
+// nothing for or against the area) and min_points_explained of all of them,
 // and lie inside the prior's gate; areas with none are not candidates. When
 // the prior is much wider than the matcher's basin (after a long loop), the
 // starts also include the best distinct maxima of a wide search over the
@@ -51,8 +54,8 @@
 // latest observations anywhere in their prior (they lie elsewhere in the
 // building, or only overlap it at the border). Before matching, a branch
 // and bound on the area's obstacle raster (match_field.h) proves, for most
-// of them, that no pose in the prior's gate lets min_match_ratio of the
-// points reach an obstacle: no mode could pass the ratio gate, so the area
+// of them, that no pose in the prior's gate lets min_points_explained of
+// the points reach an obstacle: no mode could pass the ratio gate, so the area
 // is not a candidate -- the answer the full evaluation would give, without
 // the matching. The wide search scores its poses on the same raster (one
 // lookup per point), the branch and bound on a stack of min-filtered
@@ -107,11 +110,12 @@ struct CandidateReport {
   enum class Verdict : uint8_t {
     kOutOfReach,  // its map's box (or its empty map) is beyond the
                   // observations' reach from the prior's gate
-    kBound,       // not searched: no pose in the gate lets min_match_ratio
-                  // of the points reach an obstacle (may_reach_ratio), or
+    kBound,       // not searched: no pose in the gate lets
+                  // min_points_explained of the points reach an obstacle
+                  // (may_reach_ratio), or
                   // there were no observations
-    kNoMode,      // searched: no match explained min_match_ratio of the
-                  // points inside the prior's gate
+    kNoMode,      // searched: no match inside the prior's gate passed
+                  // the ratio gate
     kImprobable,  // F below min_probability times eta: never an outcome
     kAreaCheck,   // the best mode failed the area check (same_area)
     kOutcome,     // an outcome of the event
@@ -221,6 +225,7 @@ class TransitionModel {
     Pose2D pose;
     metric_slam::MatchScore score;
     Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+    size_t in_extent = 0;  // points within the bounds of the cells the map observed
   };
   Search prepare_search(const grid::OccupancyGrid& map, const MatchField& field,
                         const topology::PoseGaussian& prior, const Observations& obs) const;

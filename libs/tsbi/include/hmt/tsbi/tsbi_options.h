@@ -16,9 +16,15 @@ struct TsbiOptions {
   // averaged over where the arcs say the robot may be, wins over a new one.
   double log_eta = 8.0;
   // A mode of the match counts only if it explains at least this fraction of
-  // the observation points (the rest are seen from places the area's map
-  // never covered).
+  // the observation points that fall within the area's extent (the bounds
+  // of the cells its map observed). Points beyond it are seen from places
+  // the map never covered: no pose of that map could explain them, and they
+  // say nothing against it (outdoors, a return at an area's edge sees far
+  // past what the area mapped).
   double min_match_ratio = 0.6;
+  // ... and at least this fraction of all the points: a return must overlap
+  // the area for most of what it sees.
+  double min_points_explained = 0.5;
   // ... and lies inside the prior: squared Mahalanobis distance to the
   // prior mean below this (chi-square, 3 dof: 16.27 is the 99.9% quantile).
   double gate = 16.27;
@@ -95,7 +101,7 @@ struct TsbiOptions {
   // depend on it.
   int field_cache_mb = 16;
   // Before matching, a branch and bound proves for most hopeless areas that
-  // no pose in the gate lets min_match_ratio of the points reach an
+  // no pose in the gate lets min_points_explained of the points reach an
   // obstacle (match_field.h); it gives up (and the area is matched) after
   // this many boxes of poses. 0: never skip an area.
   int bound_boxes = 5000;
