@@ -43,9 +43,7 @@ LocalMaps build_local_maps(const Log& log,
               opt.resolution);
           metric_slam::MatchScore score;
           const Pose2D refined = matcher.optimize(map, pose, pts, &score);
-          if (!pts.hit.empty() &&
-              score.matched >= opt.matcher.min_match_ratio *
-                                   static_cast<double>(pts.hit.size())) {
+          if (!pts.hit.empty() && opt.matcher.tracks(score.matched, pts.hit.size())) {
             pose = refined;
             ++out.matched;
           } else {

@@ -402,20 +402,18 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
       // posterior (what the observations say, not where the particle was),
       // moved on by the particle's own motion since the snapshot.
       Random rng(mix_seed(opt_.rbpf.seed ^ mix_seed(step_ * 1000003ULL + child.id)));
+      auto moved_on = [&](const Pose2D& x, const metric_slam::Particle& p) {
+        return late && snapshot_index < p.path.size()
+                   ? x + (p.path.back() - p.path[snapshot_index])
+                   : x;
+      };
       std::vector<Pose2D> poses;
-      for (const metric_slam::Particle& p : child.filter.particles()) {
-        Pose2D x = topology::sample(o.robot, rng);
-        if (late && snapshot_index < p.path.size())
-          x = x + (p.path.back() - p.path[snapshot_index]);
-        poses.push_back(x);
-      }
+      for (const metric_slam::Particle& p : child.filter.particles())
+        poses.push_back(moved_on(topology::sample(o.robot, rng), p));
       // The robot's pose now, as the match put it (moved on as the best
       // particle moved since the snapshot): where the known map does not
       // reach what the robot sees from there, its last scan goes with it.
-      Pose2D now = o.robot.mean;
-      const metric_slam::Particle& bp_now = child.filter.particles()[best];
-      if (late && snapshot_index < bp_now.path.size())
-        now = now + (bp_now.path.back() - bp_now.path[snapshot_index]);
+      const Pose2D now = moved_on(o.robot.mean, child.filter.particles()[best]);
       child.filter.load_area(*child.map.area(o.area).map, poses, &now);
       tlca::ClosureRecord rec;
       rec.from = c;

@@ -221,7 +221,7 @@ void GridRbpf::move(size_t i) {
     // tenth of a radian on no evidence.
     if (st.can_weigh && ms.matched < opt_.heading_search_ratio * static_cast<double>(n))
       mode = search_headings(p, u, pts, mode, &ms);
-    if (ms.matched >= opt_.matcher.min_match_ratio * static_cast<double>(n)) {
+    if (opt_.matcher.tracks(ms.matched, n)) {
       const Lattice lat =
           evaluate_lattice(p.map, p.pose, u, st.lattice_pts, st.lattice_scale, mode,
                            st.sample_angular);
@@ -379,8 +379,8 @@ std::vector<Pose2D> GridRbpf::start_new_area(const std::vector<SeedScan>& seeds,
 bool GridRbpf::tracks_in(const grid::OccupancyGrid& map, const Pose2D& pose) const {
   const ScanPoints pts = prepare_scan(last_scan_, opt_.matcher.max_range,
                                       opt_.matcher.beam_skip, opt_.resolution);
-  return pts.hit.empty() || matcher_.score(map, pose, pts).matched >=
-                                opt_.matcher.min_match_ratio * static_cast<double>(pts.hit.size());
+  return pts.hit.empty() || opt_.matcher.tracks(matcher_.score(map, pose, pts).matched,
+                                                pts.hit.size());
 }
 
 void GridRbpf::load_area(const grid::OccupancyGrid& map, const std::vector<Pose2D>& poses,

@@ -15,6 +15,11 @@
 namespace hmt::tsbi {
 namespace {
 
+// The share of the `n` points a match explained.
+double share_explained(const metric_slam::MatchScore& s, size_t n) {
+  return static_cast<double>(s.matched) / static_cast<double>(n);
+}
+
 // How many of the points (robot frame), placed at `pose`, fall within the
 // bounds of the cells `map` observed.
 size_t points_in_extent(const grid::OccupancyGrid& map, const Pose2D& pose,
@@ -322,7 +327,10 @@ TransitionModel::Match TransitionModel::match_from(const grid::OccupancyGrid& ma
                                                    const Observations& obs) const {
   Match m;
   m.pose = matcher_.optimize(map, start, obs.points, &m.score, &m.information);
-  m.in_extent = points_in_extent(map, m.pose, obs.points.hit);
+  // Only a match that explains min_points_explained of the points reaches
+  // the ratio gate's count within the extent (sum_modes).
+  if (share_explained(m.score, obs.points.hit.size()) >= opt_.min_points_explained)
+    m.in_extent = points_in_extent(map, m.pose, obs.points.hit);
   return m;
 }
 
@@ -344,7 +352,7 @@ ExpectedLikelihood TransitionModel::sum_modes(const Search& search,
   std::vector<Mode> modes;
   for (const Match& m : matches) {
     const Pose2D& x = m.pose;
-    const double ratio = static_cast<double>(m.score.matched) / static_cast<double>(n);
+    const double ratio = share_explained(m.score, n);
     if (ratio < opt_.min_points_explained) continue;
     // A matched point may lie up to the matcher's window outside the extent.
     const double within = std::max<double>(static_cast<double>(m.in_extent), m.score.matched);
@@ -616,9 +624,8 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
       r.verdict = verdict;
       r.wide = searches[i].wide;
       r.starts = static_cast<uint32_t>(searches[i].starts.size());
-      const double n = static_cast<double>(obs.points.hit.size());
       for (const Match& m : matches[i])
-        r.best_ratio = std::max(r.best_ratio, static_cast<double>(m.score.matched) / n);
+        r.best_ratio = std::max(r.best_ratio, share_explained(m.score, obs.points.hit.size()));
       if (f.candidate) r.log_f = f.log_f;
     };
     if (!f.candidate) return report(searches[i].starts.empty() ? V::kBound : V::kNoMode);

@@ -42,6 +42,12 @@ struct MatcherOptions {
   int gauss_newton_iterations = 3;
   double min_match_ratio = 0.2;     // below: matching failed, use odometry
 
+  // Whether a match in which `matched` of `beams` beams found an obstacle
+  // is one to track by (min_match_ratio of them).
+  bool tracks(int matched, size_t beams) const {
+    return matched >= min_match_ratio * static_cast<double>(beams);
+  }
+
   void load(Config& cfg, const std::string& section = "scan_matcher");
 };
 
