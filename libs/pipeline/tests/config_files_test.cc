@@ -67,6 +67,21 @@ TEST(ConfigFiles, OutOfRangeValueIsRejected) {
   EXPECT_THROW(load_job_options(cfg, ""), ConfigError);
 }
 
+// TSBI's floor on the points a match explains is a share of them: (0, 1].
+TEST(ConfigFiles, PointsExplainedOutsideZeroToOneIsRejected) {
+  for (const char* value : {"0", "1.5", "-0.2", "nan", "half"}) {
+    SCOPED_TRACE(value);
+    Config cfg = Config::from_string(
+        std::string("[tsbi]\nmin_points_explained = ") + value + "\n", "bad.ini");
+    try {
+      load_job_options(cfg, "");
+      FAIL() << "expected ConfigError";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("min_points_explained"), std::string::npos);
+    }
+  }
+}
+
 // A matcher threshold the clamped log-odds never reach (or one past the
 // grid's byte) would leave every scan unmatched: an error, not a bad map.
 TEST(ConfigFiles, UnreachableObstacleThresholdIsRejected) {
