@@ -181,8 +181,8 @@ struct Access {
 
   template <class A>
   static void io(A& ar, hybrid::Hypothesis& h) {
-    ar(h.id, h.filter, h.map, h.topo, h.area_start_step, h.aam_from_area, h.trajectory,
-       h.pending_closures);
+    ar(h.id, h.filter, h.map, h.topo, h.area_start_step, h.aam_from_area, h.keyframes_from_aam,
+       h.trajectory, h.pending_closures);
   }
 
   template <class A>

@@ -133,7 +133,7 @@ size_t HybridFilter::keyframe_scans_held() const {
 
 std::optional<area::Keyframe> HybridFilter::keyframe_due(const LogStep& step) {
   const Hypothesis& h = best();
-  const Pose2D pose = h.aam_from_area + h.filter.best().path.back();
+  const Pose2D pose = h.keyframes_from_aam + (h.aam_from_area + h.filter.best().path.back());
   if (has_keyframe_) {
     if (within_spacing(pose - last_keyframe_pose_, opt_.hybrid.keyframe_distance,
                        opt_.hybrid.keyframe_angle))
@@ -142,6 +142,10 @@ std::optional<area::Keyframe> HybridFilter::keyframe_due(const LogStep& step) {
   if (!area::enough_returns(step.scan)) return std::nullopt;
   has_keyframe_ = true;
   last_keyframe_pose_ = pose;
+  // Every other hypothesis has the robot here too: anchor its frame so.
+  for (Hypothesis& hh : hyps_)
+    if (&hh != &h)
+      hh.keyframes_from_aam = pose + (hh.aam_from_area + hh.filter.best().path.back()).inverse();
   keyframes_.push_back({step_, std::make_shared<const LaserScan>(step.scan), pose});
   ++stats_.keyframes;
   // An area keeps a keyframe only where it has none within the keyframe
@@ -683,7 +687,8 @@ topology::Session HybridFilter::session(const area::OnlinePartitioner& partition
     sh.topo = h.topo;
     sh.topo.log_weight = std::log(p[i]);
     sh.robot = h.filter.best().path.back();
-    sh.aam_from_area = h.aam_from_area;
+    // Saved in the keyframes' frame, which the saved area graph is in.
+    sh.aam_from_area = h.keyframes_from_aam + h.aam_from_area;
     sh.pending_closures = h.pending_closures;
     s.hypotheses.push_back(std::move(sh));
   }

@@ -129,6 +129,58 @@ TEST(HybridFilter, EventEvidenceWeighsTheHypotheses) {
   EXPECT_NEAR(off[1], 0.5, 1e-9);
 }
 
+// Two hypotheses whose frames have drifted 30 m apart (as rivals do over a
+// long loop): when the second becomes the more probable, the keyframes the
+// area abstraction is given go on from the last one, not 30 m away, which
+// it would take for unexplored space and cut a new area at every change.
+TEST(HybridFilter, TheKeyframesPathDoesNotJumpWhenTheBestHypothesisChanges) {
+  const auto run = testing_ring::ring_run(7);
+  topology::Session s = saved_after(run, 60);
+  s.hypotheses.push_back(s.hypotheses[0]);
+  s.hypotheses[1].id = s.hypotheses[0].id + 1;
+  s.hypotheses[1].aam_from_area = Pose2D(30.0, -20.0, 0.5) + s.hypotheses[1].aam_from_area;
+  s.hypotheses[0].topo.log_weight = std::log(0.6);
+  s.hypotheses[1].topo.log_weight = std::log(0.4);
+  HmtOptions o = ring_options();
+  o.hybrid.event_evidence = true;
+  HybridFilter f(o);
+  f.resume(s);
+  auto aam_pose = [](const Hypothesis& h) {
+    return h.aam_from_area + h.filter.best().path.back();
+  };
+  for (size_t i = 60; i < 66; ++i) f.process(run.log.steps[i]);
+  ASSERT_EQ(f.hypotheses().size(), 2u);
+  const Hypothesis& other =
+      &f.hypotheses()[0] == &f.best() ? f.hypotheses()[1] : f.hypotheses()[0];
+  const Pose2D other_before = aam_pose(other);
+  ASSERT_GT((other_before - aam_pose(f.best())).norm(), 20.0);
+  const std::vector<topology::Keyframe> before = f.session().area_graph;
+  ASSERT_FALSE(before.empty());
+  // An event whose outcome explains the observations 20 times better in
+  // the other hypothesis: it becomes the best.
+  area::AreaDecision d;
+  d.new_area = true;
+  const std::vector<EventInput> in = f.prepare_event(d);
+  ASSERT_EQ(in.size(), 2u);
+  std::vector<std::vector<tsbi::Outcome>> outcomes(in.size(), std::vector<tsbi::Outcome>(1));
+  for (size_t k = 0; k < in.size(); ++k) {
+    outcomes[k][0].probability = 1.0;
+    outcomes[k][0].log_f =
+        o.tsbi.log_eta + (in[k].hypothesis == other.id ? std::log(20.0) : 0.0);
+  }
+  f.apply_event(d, in, outcomes);
+  ASSERT_LT((aam_pose(f.best()) - other_before).norm(), 1e-6);
+  for (size_t i = 66; i < 70; ++i) f.process(run.log.steps[i]);
+  const std::vector<topology::Keyframe> after = f.session().area_graph;
+  ASSERT_GT(after.size(), before.size());
+  // The window still holds the keyframes from before the change ...
+  const Pose2D last_before = before.back().pose;
+  EXPECT_LT((after[before.size() - 1].pose - last_before).norm(), 1e-9);
+  // ... and every step to the next is a step of the robot's path.
+  for (size_t i = 1; i < after.size(); ++i)
+    EXPECT_LT((after[i].pose - after[i - 1].pose).norm(), 2.0) << "keyframes " << i - 1 << "-" << i;
+}
+
 // Two equally probable hypotheses meet an event of three outcomes each
 // (an unexplored area, known areas x and y) with at most three hypotheses
 // kept. The children pruning drops are never built, yet what is left is

@@ -46,6 +46,14 @@ struct Hypothesis {
   // Pose of the current area's frame in the area abstraction's frame (a
   // frame continuous across area changes, for the keyframe graph).
   Pose2D aam_from_area;
+  // Pose of that frame in the frame of the keyframes the area abstraction
+  // is given. Rival hypotheses' frames drift apart (33 m after the Infinite
+  // Corridor's last loop), and each keyframe comes from whichever hypothesis
+  // is best then: at every keyframe the others are anchored where it puts
+  // the robot, so that the keyframes' path does not jump when the best
+  // changes. The identity in a hypothesis that was the best at every
+  // keyframe.
+  Pose2D keyframes_from_aam;
   // Finished visits; shared between hypotheses that branched after them.
   std::vector<std::shared_ptr<const TrajectorySegment>> trajectory;
   // Loop closures made since this hypothesis was last accepted (TLCA).
