@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 #include "ring_world.h"
 
@@ -92,29 +93,49 @@ TEST(HybridFilter, ClosesTheLoopWhenEventsWeighTheHypotheses) {
   expect_ring_closed(f);
 }
 
+// The saved state after `steps` of `run`, its hypothesis copied as a
+// second one; the first of probability p_first.
+topology::Session two_hypotheses_after(const testing_sim::SimRun& run, size_t steps,
+                                       double p_first) {
+  topology::Session s = saved_after(run, steps);
+  s.hypotheses.push_back(s.hypotheses[0]);
+  s.hypotheses[1].id = s.hypotheses[0].id + 1;
+  s.hypotheses[0].topo.log_weight = std::log(p_first);
+  s.hypotheses[1].topo.log_weight = std::log(1.0 - p_first);
+  return s;
+}
+
+// A new-area event with one outcome per hypothesis, which explains the
+// observations exp(log_bonus(hypothesis id)) times better than an
+// unexplored area.
+void event_of_one_outcome(HybridFilter& f, const HmtOptions& o,
+                          const std::function<double(uint32_t)>& log_bonus) {
+  area::AreaDecision d;
+  d.new_area = true;
+  const std::vector<EventInput> in = f.prepare_event(d);
+  EXPECT_EQ(in.size(), f.hypotheses().size());
+  std::vector<std::vector<tsbi::Outcome>> outcomes(in.size(), std::vector<tsbi::Outcome>(1));
+  for (size_t k = 0; k < in.size(); ++k) {
+    outcomes[k][0].probability = 1.0;
+    outcomes[k][0].log_f = o.tsbi.log_eta + log_bonus(in[k].hypothesis);
+  }
+  f.apply_event(d, in, outcomes);
+}
+
 // Two equally probable hypotheses meet an event whose outcomes explain the
 // observations e^0 and ln(9) better than an unexplored area: with the
 // evidence on, their weights become 0.1 and 0.9; off, they stay equal.
 std::vector<double> after_event_of_evidence(bool event_evidence) {
   const auto run = testing_ring::ring_run(7);
-  topology::Session s = saved_after(run, 60);
-  s.hypotheses.push_back(s.hypotheses[0]);
-  s.hypotheses[1].id = s.hypotheses[0].id + 1;
-  s.hypotheses[0].topo.log_weight = s.hypotheses[1].topo.log_weight = std::log(0.5);
+  const topology::Session s = two_hypotheses_after(run, 60, 0.5);
   HmtOptions o = ring_options();
   o.hybrid.event_evidence = event_evidence;
   HybridFilter f(o);
   f.resume(s);
-  area::AreaDecision d;
-  d.new_area = true;
-  const std::vector<EventInput> in = f.prepare_event(d);
-  EXPECT_EQ(in.size(), 2u);
-  std::vector<std::vector<tsbi::Outcome>> outcomes(in.size(), std::vector<tsbi::Outcome>(1));
-  for (size_t k = 0; k < in.size(); ++k) {
-    outcomes[k][0].probability = 1.0;
-    outcomes[k][0].log_f = o.tsbi.log_eta + (k == 1 ? std::log(9.0) : 0.0);
-  }
-  f.apply_event(d, in, outcomes);
+  EXPECT_EQ(f.hypotheses().size(), 2u);
+  event_of_one_outcome(f, o, [&](uint32_t h) {
+    return h == s.hypotheses[1].id ? std::log(9.0) : 0.0;
+  });
   return f.probabilities();
 }
 
@@ -135,12 +156,8 @@ TEST(HybridFilter, EventEvidenceWeighsTheHypotheses) {
 // it would take for unexplored space and cut a new area at every change.
 TEST(HybridFilter, TheKeyframesPathDoesNotJumpWhenTheBestHypothesisChanges) {
   const auto run = testing_ring::ring_run(7);
-  topology::Session s = saved_after(run, 60);
-  s.hypotheses.push_back(s.hypotheses[0]);
-  s.hypotheses[1].id = s.hypotheses[0].id + 1;
+  topology::Session s = two_hypotheses_after(run, 60, 0.6);
   s.hypotheses[1].aam_from_area = Pose2D(30.0, -20.0, 0.5) + s.hypotheses[1].aam_from_area;
-  s.hypotheses[0].topo.log_weight = std::log(0.6);
-  s.hypotheses[1].topo.log_weight = std::log(0.4);
   HmtOptions o = ring_options();
   o.hybrid.event_evidence = true;
   HybridFilter f(o);
@@ -158,17 +175,8 @@ TEST(HybridFilter, TheKeyframesPathDoesNotJumpWhenTheBestHypothesisChanges) {
   ASSERT_FALSE(before.empty());
   // An event whose outcome explains the observations 20 times better in
   // the other hypothesis: it becomes the best.
-  area::AreaDecision d;
-  d.new_area = true;
-  const std::vector<EventInput> in = f.prepare_event(d);
-  ASSERT_EQ(in.size(), 2u);
-  std::vector<std::vector<tsbi::Outcome>> outcomes(in.size(), std::vector<tsbi::Outcome>(1));
-  for (size_t k = 0; k < in.size(); ++k) {
-    outcomes[k][0].probability = 1.0;
-    outcomes[k][0].log_f =
-        o.tsbi.log_eta + (in[k].hypothesis == other.id ? std::log(20.0) : 0.0);
-  }
-  f.apply_event(d, in, outcomes);
+  const uint32_t other_id = other.id;
+  event_of_one_outcome(f, o, [&](uint32_t h) { return h == other_id ? std::log(20.0) : 0.0; });
   ASSERT_LT((aam_pose(f.best()) - other_before).norm(), 1e-6);
   for (size_t i = 66; i < 70; ++i) f.process(run.log.steps[i]);
   const std::vector<topology::Keyframe> after = f.session().area_graph;
