@@ -321,7 +321,7 @@ void HmtSystem::record_step(uint64_t index, double time, bool sample_memory) {
   e.time = time;
   e.area = best.current_area();
   e.pose_in_area = best.filter.best().path.back();
-  e.pose_continuous = best.keyframes_from_aam + (best.aam_from_area + e.pose_in_area);
+  e.pose_continuous = best.in_keyframes(e.pose_in_area);
   e.ess = best.filter.ess();
   e.hypotheses = hyps.size();
   topo.pmf = t.pmf;

@@ -133,7 +133,7 @@ size_t HybridFilter::keyframe_scans_held() const {
 
 std::optional<area::Keyframe> HybridFilter::keyframe_due(const LogStep& step) {
   const Hypothesis& h = best();
-  const Pose2D pose = h.keyframes_from_aam + (h.aam_from_area + h.filter.best().path.back());
+  const Pose2D pose = h.in_keyframes(h.filter.best().path.back());
   if (has_keyframe_) {
     if (within_spacing(pose - last_keyframe_pose_, opt_.hybrid.keyframe_distance,
                        opt_.hybrid.keyframe_angle))

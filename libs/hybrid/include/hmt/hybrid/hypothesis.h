@@ -61,6 +61,10 @@ struct Hypothesis {
 
   explicit Hypothesis(metric_slam::GridRbpf f) : filter(std::move(f)) {}
   topology::AreaId current_area() const { return topo.current_area(); }
+  // A pose in the current area's frame, in the keyframes' frame.
+  Pose2D in_keyframes(const Pose2D& in_area) const {
+    return keyframes_from_aam + (aam_from_area + in_area);
+  }
 };
 
 }  // namespace hmt::hybrid
