@@ -24,6 +24,7 @@ void KeyframeGraphOptions::load(Config& cfg, const std::string& s) {
   step_std_theta_per_radian =
       cfg.get_double(s, "step_std_theta_per_radian", step_std_theta_per_radian);
   match = cfg.get_bool(s, "match", match);
+  match_own_area = cfg.get_bool(s, "match_own_area", match_own_area);
   match_min_ratio = cfg.get_double(s, "match_min_ratio", match_min_ratio);
   match_gate_xy = cfg.get_double(s, "match_gate_xy", match_gate_xy);
   match_gate_theta = cfg.get_double(s, "match_gate_theta", match_gate_theta);

@@ -461,10 +461,11 @@ class Graph {
     }
   }
 
-  // (d) every keyframe's scan in every other area whose box (at the current
-  // estimate) holds the keyframe. Keyframes are matched in parallel, each
-  // into its own slot, and the slots joined in keyframe order, so the
-  // constraints do not depend on the number of threads.
+  // (d) every keyframe's scan in every area whose box (at the current
+  // estimate) holds the keyframe, its own area included (match_own_area).
+  // Keyframes are matched in parallel, each into its own slot, and the
+  // slots joined in keyframe order, so the constraints do not depend on the
+  // number of threads.
   void add_matches(std::vector<Edge>* edges) {
     const size_t A = area_ids_.size();
     std::vector<std::optional<Box>> boxes(A);
@@ -502,7 +503,8 @@ class Graph {
     metric_slam::ScanPoints pts;
     double pts_resolution = 0.0;
     for (size_t a = 0; a < A; ++a) {
-      if (area_ids_[a] == nodes_[i].area || !boxes[a] || !boxes[a]->holds(g)) continue;
+      if (area_ids_[a] == nodes_[i].area && !opt_.match_own_area) continue;
+      if (!boxes[a] || !boxes[a]->holds(g)) continue;
       const grid::OccupancyGrid& grid = *map_.area(area_ids_[a]).map;
       if (grid.resolution() != pts_resolution) {
         pts = metric_slam::prepare_scan(step->scan, mo.max_range, mo.beam_skip, grid.resolution());

@@ -23,7 +23,7 @@ TEST(GlobalMapOptions, ReadsItsKeys) {
   Config cfg = Config::from_string(
       "[global_map]\nmethod = areas\nrobust_kernel = huber\nrobust_chi2 = 4\n"
       "match = false\nmatch_min_ratio = 0.4\nrounds = 2\nin_area_std_xy = 0.05\n"
-      "match_reuse = false\n",
+      "match_reuse = false\nmatch_own_area = false\n",
       "test");
   GlobalMapOptions opt;
   opt.load(cfg);
@@ -33,6 +33,7 @@ TEST(GlobalMapOptions, ReadsItsKeys) {
   EXPECT_EQ(opt.graph.robust_chi2, 4.0);
   EXPECT_FALSE(opt.graph.match);
   EXPECT_FALSE(opt.graph.match_reuse);
+  EXPECT_FALSE(opt.graph.match_own_area);
   EXPECT_EQ(opt.graph.match_min_ratio, 0.4);
   EXPECT_EQ(opt.graph.rounds, 2);
   EXPECT_EQ(opt.graph.in_area_std_xy, 0.05);
@@ -43,7 +44,7 @@ TEST(GlobalMapOptions, InvalidValuesAreConfigurationErrors) {
        {"method = both", "robust_kernel = cauchy", "robust_chi2 = 0", "match_min_ratio = 1.5",
         "in_area_std_xy = 0", "step_std_theta = -1", "match_inflation = 0.5", "rounds = 0",
         "max_iterations = 0", "relative_tolerance = 1", "match_gate_xy = 0",
-        "match_reuse = sometimes"}) {
+        "match_reuse = sometimes", "match_own_area = 2"}) {
     SCOPED_TRACE(bad);
     Config cfg = Config::from_string("[global_map]\n" + bad + "\n", "test");
     GlobalMapOptions opt;

@@ -69,8 +69,12 @@ struct Scenario {
   // `revisit_error`: the filter's poses of the second visit to area 1 are
   // off by this (composed on the left in area 1's frame: a misplaced
   // re-entry), and that visit's scans are not in area 1's grid.
+  // `jitter_xy`, `jitter_theta`: every pose of the filter's path is also off
+  // by its own draw of this standard deviation, as a particle's sampled
+  // poses are, and the grids are built at those poses.
   Scenario(const Pose2D& arc_error, const Eigen::Matrix3d& arc_cov,
-           const Pose2D& revisit_error = Pose2D()) {
+           const Pose2D& revisit_error = Pose2D(), double jitter_xy = 0.0,
+           double jitter_theta = 0.0) {
     truth = drive({{1.5, 2}, {6, 2}, {6, 8.5}, {13, 7}, {13, 4.5}, {18, 5}, {18, 8.8},
                    {12.5, 6.5}, {6.5, 8.8}, {6.5, 3}});
     const sim::World world = office();
@@ -96,11 +100,14 @@ struct Scenario {
     area2 = truth[enter];
     const grid::InsertionOptions ins;
     grid::OccupancyGrid g1(0.05), g2(0.05);
+    Random draws(11);
     auto visit = [&](AreaId area, const Pose2D& frame, size_t from, size_t to,
                      grid::OccupancyGrid* g, const Pose2D& error) {
       AreaVisit v{area, from, {}};
       for (size_t i = from; i <= to; ++i) {
-        v.poses.push_back(error + (truth[i] - frame));
+        const Pose2D draw(jitter_xy * draws.normal(), jitter_xy * draws.normal(),
+                          jitter_theta * draws.normal());
+        v.poses.push_back(error + (truth[i] - frame) + draw);
         if (g) grid::insert_scan(*g, v.poses.back(), log.steps[i].scan, ins);
       }
       visits.push_back(v);
@@ -195,10 +202,11 @@ TEST(KeyframeGraph, AStartThatBarelyMovedKeepsItsMatch) {
   // Re-matched every round, the matches' half-cell jitter moves some
   // keyframe by 2-3 cm a round and the rounds run out at a 1 cm tolerance.
   // Keeping the match of a start that moved less than the matcher's finest
-  // step, the rounds reach a fixed point, and the poses are as good.
+  // step, the rounds reach a fixed point, and the poses are as good. (Here
+  // in 14 rounds; in 6 without the matches in the keyframes' own areas.)
   const Scenario s(Pose2D(0.3, -0.2, 0.04), diag(0.1, 0.03));
   KeyframeGraphOptions opt;
-  opt.rounds = 10;
+  opt.rounds = 20;
   opt.match_reuse = false;
   const KeyframeGraph fresh = solve(s, opt);
   opt.match_reuse = true;
@@ -234,6 +242,31 @@ TEST(KeyframeGraph, RecoversAMisplacedRevisitInsideAnArea) {
   const std::vector<Pose2D> traj = keyframe_trajectory(s.visits, g.nodes, 0, s.truth.size());
   for (size_t i = revisit.first_step; i < s.truth.size(); ++i)
     EXPECT_LT(position_error(traj[i], s.truth[i]), 0.04) << "step " << i;
+}
+
+// The RMS position error of the keyframes against the truth.
+double keyframes_rms(const KeyframeGraph& g, const Scenario& s) {
+  double sum = 0.0;
+  for (const KeyframeNode& n : g.nodes) sum += std::pow(position_error(n.global, s.truth[n.step]), 2);
+  return std::sqrt(sum / static_cast<double>(g.nodes.size()));
+}
+
+TEST(KeyframeGraph, MatchesInTheKeyframesOwnAreaSmoothTheFiltersDraws) {
+  // The arc is right, but every pose of the filter's path carries its own
+  // draw (3 cm, 0.01 rad), and the grids were built at those poses. Tied by
+  // its in-area pose, its motion and its matches in the other area, a
+  // keyframe keeps much of its draw; matched in its own area's grid as well
+  // (the default), it is placed against walls that all the area's scans
+  // drew, and ends a third nearer the truth.
+  const Scenario s(Pose2D(), diag(0.1, 0.03), Pose2D(), 0.03, 0.01);
+  KeyframeGraphOptions others_only;
+  others_only.match_own_area = false;
+  const KeyframeGraph own = solve(s), others = solve(s, others_only);
+  ASSERT_EQ(own.nodes.size(), others.nodes.size());
+  EXPECT_GT(own.report.matches, others.report.matches + own.nodes.size() / 2);
+  const double own_rms = keyframes_rms(own, s), others_rms = keyframes_rms(others, s);
+  EXPECT_GT(others_rms, 0.05);  // 6.8 cm
+  EXPECT_LT(own_rms, 0.75 * others_rms);  // 4.6 cm
 }
 
 TEST(KeyframeGraph, AConfidentWrongArcIsDownWeighted) {
@@ -362,8 +395,9 @@ TEST(KeyframeGraph, GridDrawnFromTheKeyframeScans) {
   const KeyframeGraph g = solve(s);
   const grid::OccupancyGrid m =
       render_keyframe_grid(g.nodes, s.steps(), 0.05, grid::InsertionOptions{});
-  // The inner wall's face (x = 8) is an obstacle, the room beside it free.
-  EXPECT_GT(m.probability(m.cell_of(7.99, 3.0)), 0.6);
+  // The inner wall's face (x = 8, where a cell begins: its returns fall in
+  // the cell [8, 8.05)) is an obstacle, the room beside it free.
+  EXPECT_GT(m.probability(m.cell_of(8.01, 3.0)), 0.6);
   EXPECT_LT(m.probability(m.cell_of(7.0, 3.0)), 0.4);
   EXPECT_THROW(render_keyframe_grid(g.nodes, s.steps(), 0.0, grid::InsertionOptions{}),
                std::invalid_argument);

@@ -49,6 +49,15 @@ struct KeyframeGraphOptions {
 
   // (d) A keyframe's scan matched in another area's grid.
   bool match = true;
+  // ... and in its own area's grid. (a) is the metric filter's pose: a
+  // draw from the particle's proposal, against the area's map as it was at
+  // that step. The area's grid holds all of the area's scans of the run,
+  // and matched in it a keyframe is placed against what the later scans
+  // drew too (on aces at seed 1, 1.6 cm from (a) in the median, 8 cm at
+  // the 90th percentile). Like a submap's own nodes in Cartographer's pose
+  // graph, the area's keyframes then hold the area's shape more firmly
+  // than (a) alone, whose spread grows with the distance from the origin.
+  bool match_own_area = true;
   // Kept only if the match explains at least this fraction of the scan's
   // points ...
   double match_min_ratio = 0.5;
