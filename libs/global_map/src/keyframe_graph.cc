@@ -307,10 +307,19 @@ class Graph {
     Cholesky cholesky;
     std::vector<Edge> edges;
     std::optional<NormalEquations> eq;  // this round's pattern
+    // The keyframes' matches in their own areas (match_own_area) join in
+    // the last round, or in the round after the estimate settled: a
+    // refinement at the estimate the other constraints found. From the
+    // first round they hold each area's shape while the loops are still
+    // being closed, and the loops' error goes into the joints between
+    // areas (docs/measurements.md).
+    const bool refine_in_own_areas = opt_.match && opt_.match_own_area;
     for (int round = 0; round < opt_.rounds; ++round) {
+      const bool own_areas =
+          refine_in_own_areas && (round == opt_.rounds - 1 || r.converged);
       const std::vector<Pose2D> before_round = x_;
       edges = fixed_;
-      if (opt_.match) add_matches(&edges);
+      if (opt_.match) add_matches(own_areas, &edges);
       ++r.rounds;
       double cost = cost_of(edges, x_, opt_);
       if (round == 0) r.initial_cost = cost;
@@ -331,7 +340,7 @@ class Graph {
       largest_move(before_round, &r.last_round_move_xy, &r.last_round_move_theta);
       r.converged = r.last_round_move_xy <= opt_.round_tolerance &&
                     r.last_round_move_theta <= opt_.round_tolerance;
-      if (r.converged) break;
+      if (own_areas || (r.converged && !refine_in_own_areas)) break;
     }
     // The last round's constraints, counted and used for the covariances.
     for (const Edge& e : edges) {
@@ -461,12 +470,13 @@ class Graph {
     }
   }
 
-  // (d) every keyframe's scan in every area whose box (at the current
-  // estimate) holds the keyframe, its own area included (match_own_area).
+  // (d) every keyframe's scan in every other area whose box (at the
+  // current estimate) holds the keyframe, and in its own area if
+  // `own_areas`.
   // Keyframes are matched in parallel, each into its own slot, and the
   // slots joined in keyframe order, so the constraints do not depend on the
   // number of threads.
-  void add_matches(std::vector<Edge>* edges) {
+  void add_matches(bool own_areas, std::vector<Edge>* edges) {
     const size_t A = area_ids_.size();
     std::vector<std::optional<Box>> boxes(A);
     for (size_t a = 0; a < A; ++a)
@@ -475,7 +485,7 @@ class Graph {
     std::vector<size_t> tried(nodes_.size(), 0), reused(nodes_.size(), 0);
     past_.resize(nodes_.size());
     pool_.parallel_for(nodes_.size(), [&](size_t i) {
-      match_node(i, boxes, &found[i], &tried[i], &reused[i]);
+      match_node(i, boxes, own_areas, &found[i], &tried[i], &reused[i]);
     });
     report_.matches_tried = 0;
     report_.matches_reused = 0;
@@ -486,11 +496,11 @@ class Graph {
     }
   }
 
-  // Matches keyframe i in every area whose box holds it, into `out`; its
-  // slot of past_ (written by this call only) keeps the matches for the
-  // next round.
-  void match_node(size_t i, const std::vector<std::optional<Box>>& boxes, std::vector<Edge>* out,
-                  size_t* tried, size_t* reused) {
+  // Matches keyframe i in every other area whose box holds it (and in its
+  // own if `own_areas`), into `out`; its slot of past_ (written by this
+  // call only) keeps the matches for the next round.
+  void match_node(size_t i, const std::vector<std::optional<Box>>& boxes, bool own_areas,
+                  std::vector<Edge>* out, size_t* tried, size_t* reused) {
     const size_t A = area_ids_.size();
     const metric_slam::MatcherOptions& mo = matcher_.options();
     const Pose2D& g = x_[A + i];
@@ -503,7 +513,7 @@ class Graph {
     metric_slam::ScanPoints pts;
     double pts_resolution = 0.0;
     for (size_t a = 0; a < A; ++a) {
-      if (area_ids_[a] == nodes_[i].area && !opt_.match_own_area) continue;
+      if (area_ids_[a] == nodes_[i].area && !own_areas) continue;
       if (!boxes[a] || !boxes[a]->holds(g)) continue;
       const grid::OccupancyGrid& grid = *map_.area(area_ids_[a]).map;
       if (grid.resolution() != pts_resolution) {

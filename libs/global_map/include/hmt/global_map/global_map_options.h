@@ -57,6 +57,8 @@ struct KeyframeGraphOptions {
   // the 90th percentile). Like a submap's own nodes in Cartographer's pose
   // graph, the area's keyframes then hold the area's shape more firmly
   // than (a) alone, whose spread grows with the distance from the origin.
+  // So these matches join only in the last round (or in the round after
+  // the estimate settled): a refinement once the loops are closed.
   bool match_own_area = true;
   // Kept only if the match explains at least this fraction of the scan's
   // points ...
@@ -87,7 +89,9 @@ struct KeyframeGraphOptions {
   // starts from the estimate the previous round left, so overlaps the
   // area-grain estimate placed too far apart are found as it improves.
   // The rounds end early once a round moved no keyframe by more than
-  // round_tolerance (metres, and radians for the heading).
+  // round_tolerance (metres, and radians for the heading); with
+  // match_own_area, after one more round that adds the own areas'
+  // matches.
   int rounds = 5;
   double round_tolerance = 0.01;
   // Gauss-Newton iterations per round, and the relative cost decrease that

@@ -31,9 +31,9 @@
 //       beams, plus a floor covariance. A keyframe whose start in an area
 //       moved less than the matcher's finest step since the last round
 //       keeps that round's match there (match_reuse).
-//       The keyframe's own area's grid is matched too (match_own_area):
-//       (a) is the filter's pose against the area's map as it was then,
-//       the grid holds the whole run's scans of the area.
+//       In the last round the keyframe's own area's grid is matched too
+//       (match_own_area): (a) is the filter's pose against the area's map
+//       as it was then, the grid holds the whole run's scans of the area.
 // (c) and (d) go through a robust kernel (Huber or DCS), so a wrong arc or
 // match is down-weighted instead of bending the map. The cost is minimised
 // by iteratively reweighted Gauss-Newton with step halving, the normal
