@@ -23,6 +23,10 @@
 #   HMT_SLAM   [<repo>/build/apps/hmt-slam]
 #   TIMEOUT    seconds a run may take [1800]
 #   THRESHOLD  position RMSE a run must not exceed (m) [0.15]
+#   DEGRADE    options of scripts/degrade_laser.py (e.g. "--range 8", "--fov
+#              120"): every log is first rewritten as that worse laser would
+#              have recorded it (into OUT_DIR/degraded) and run from there,
+#              still scored against the original's reference [none]
 # Extra arguments go to every `hmt-slam run` (e.g. --set k=v to try a change).
 set -euo pipefail
 REPO=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -39,6 +43,7 @@ OUT_DIR=${OUT_DIR:-/tmp/hmt-bench-seeds}
 HMT_SLAM=${HMT_SLAM:-$REPO/build/apps/hmt-slam}
 TIMEOUT=${TIMEOUT:-1800}
 THRESHOLD=${THRESHOLD:-0.15}
+DEGRADE=${DEGRADE:-}
 PY=/usr/bin/python3
 
 [[ "$JOBS" =~ ^[1-9][0-9]*$ ]] || bench_die "JOBS must be a positive integer, not '$JOBS'"
@@ -60,6 +65,25 @@ mkdir -p "$OUT_DIR"
 for log in $LOGS; do rm -rf "${OUT_DIR:?}/$log"; done
 echo "$LOGS" >"$OUT_DIR/logs.txt"
 
+# The log a run reads: the shared one, or its degraded copy.
+input_of() {
+  if [[ -n "$DEGRADE" ]]; then
+    echo "$OUT_DIR/degraded/$1.log.gz"
+  else
+    echo "$DATASETS/carmen/$1.log.gz"
+  fi
+}
+if [[ -n "$DEGRADE" ]]; then
+  mkdir -p "$OUT_DIR/degraded"
+  for log in $LOGS; do
+    # DEGRADE is a list of the script's options: split on purpose.
+    # shellcheck disable=SC2086
+    "$PY" "$REPO/scripts/degrade_laser.py" "$DATASETS/carmen/$log.log.gz" \
+      "$(input_of "$log")" $DEGRADE >/dev/null ||
+      bench_die "scripts/degrade_laser.py $DEGRADE failed on $log"
+  done
+fi
+
 # run_one LOG SEED [ARGS...]: one run into OUT_DIR/LOG/seedSEED, scored; a
 # failure is written to its error.txt (the report counts it as failed).
 run_one() {
@@ -68,7 +92,7 @@ run_one() {
   d=$OUT_DIR/$log/seed$seed
   mkdir -p "$d"
   bench_measure "$TIMEOUT" "$d/time.txt" "$d/output.txt" "$HMT_SLAM" run --quiet \
-    --config "$CONFIG" --input "$DATASETS/carmen/$log.log.gz" --out "$d/run" \
+    --config "$CONFIG" --input "$(input_of "$log")" --out "$d/run" \
     --set "metric_slam.seed=$seed" "$@" || rc=$?
   if [[ $rc -ne 0 ]]; then
     echo "$(bench_exit_reason "$rc" "$d/time.txt"): $(tail -n 1 "$d/output.txt")" >"$d/error.txt"
@@ -105,6 +129,6 @@ for seed in $SEEDS; do
 done
 wait
 
-echo "## Default configuration over seeds $SEEDS ($(basename "$CONFIG")${*:+, $*})"
+echo "## Default configuration over seeds $SEEDS ($(basename "$CONFIG")${DEGRADE:+, laser degraded: $DEGRADE}${*:+, $*})"
 echo
 "$PY" "$REPO/scripts/seeds_report.py" "$OUT_DIR" --threshold "$THRESHOLD"
