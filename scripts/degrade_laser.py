@@ -21,42 +21,34 @@ import argparse
 import gzip
 import math
 import os
+import sys
 import tempfile
+
+# The beams' bearings as hmt-slam's CARMEN reader takes them.
+sys.path.insert(0, __file__.rsplit("/", 1)[0])
+from map_sharpness import beam_angles  # noqa: E402
 
 
 def open_text(path, mode):
     return gzip.open(path, mode + "t") if path.endswith(".gz") else open(path, mode)
 
 
-def flaser_bearings(n):
-    """The beams' bearings (rad) as the CARMEN reader takes them: from -90
-    degrees, a degree apart for 180/181 beams, half a degree for 360/361,
-    else spread over 180 degrees."""
-    if n in (180, 181):
-        res = math.radians(1.0)
-    elif n in (360, 361):
-        res = math.radians(0.5)
-    else:
-        res = math.pi / (n - 1) if n > 1 else 0.0
-    return -math.pi / 2, res
-
-
 def laser_fields(s):
-    """(first reading's field, beam count, first bearing, bearing step) of a
+    """(first reading's field, beam count, the beams' bearings in rad) of a
     FLASER or ROBOTLASER1 line; ValueError or IndexError if it does not parse."""
     if s[0] == "FLASER":
         n = int(s[1])
-        start, res = flaser_bearings(n)
         first = 2
     else:  # ROBOTLASER1 type start fov resolution max_range accuracy mode n r1..rn
         n = int(s[8])
-        start, res = float(s[2]), float(s[4])
         first = 9
     if n < 0 or len(s) < first + n:
         raise IndexError
     for i in range(first, first + n):
         float(s[i])
-    return first, n, start, res
+    if s[0] == "FLASER":
+        return first, n, beam_angles(n)
+    return first, n, beam_angles(n, float(s[2]), float(s[4]))
 
 
 def laser_lines(path):
@@ -79,7 +71,7 @@ def largest_reading(path):
         if s is None:
             continue
         try:
-            first, count, _, _ = laser_fields(s)
+            first, count, _ = laser_fields(s)
         except (ValueError, IndexError):
             fail_line(path, n, s[0])
         for v in s[first:first + count]:
@@ -101,18 +93,18 @@ def write_degraded(inp, out, reach, fov, code):
                 g.write(line)
                 continue
             try:
-                first, count, start, res = laser_fields(s)
+                first, count, bearings = laser_fields(s)
             except (ValueError, IndexError):
                 fail_line(inp, n, s[0])
             if s[0] == "ROBOTLASER1":
                 s[5] = code
-            middle = start + res * (count - 1) / 2
+            middle = (bearings[0] + bearings[-1]) / 2 if count else 0.0
             for i in range(count):
                 r = float(s[first + i])  # nan and inf stay as written: no reading either way
                 if not math.isfinite(r):
                     continue
                 beyond = reach is not None and r > reach
-                aside = half is not None and abs(start + i * res - middle) > half + 1e-9
+                aside = half is not None and abs(bearings[i] - middle) > half + 1e-9
                 if beyond or aside:
                     if s[first + i] != code:
                         changed += 1

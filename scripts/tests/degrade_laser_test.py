@@ -127,18 +127,13 @@ class DegradeLaser(unittest.TestCase):
                     ["--fov", "400"], []):
             r = run(self.log, os.path.join(self.dir.name, "x.log"), *bad)
             self.assertNotEqual(r.returncode, 0, bad)
-        word = os.path.join(self.dir.name, "word.log")
-        with open(word, "w") as f:
-            f.write("FLASER 2 1.0 far 0 0 0 0 0 0 1.0 host 1.0\n")
-        r = run(word, os.path.join(self.dir.name, "z.log"), "--range", "4")
-        self.assertNotEqual(r.returncode, 0)
-        self.assertIn("word.log:1", r.stderr)
-        empty = os.path.join(self.dir.name, "empty.log")
-        with open(empty, "w") as f:
-            f.write("PARAM robot_front_laser_max 81.9\n")
-        r = run(empty, os.path.join(self.dir.name, "e.log"), "--fov", "90")
-        self.assertNotEqual(r.returncode, 0)
-        self.assertIn("no FLASER or ROBOTLASER1", r.stderr)
+        for text, args, message in (
+                ("FLASER 2 1.0 far 0 0 0 0 0 0 1.0 host 1.0\n", ["--range", "4"], "in.log:1"),
+                ("PARAM robot_front_laser_max 81.9\n", ["--fov", "90"], "no FLASER or ROBOTLASER1")):
+            self.write([text])
+            r = run(self.log, os.path.join(self.dir.name, "z.log"), *args)
+            self.assertNotEqual(r.returncode, 0, text)
+            self.assertIn(message, r.stderr)
 
 
 if __name__ == "__main__":
