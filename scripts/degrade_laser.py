@@ -24,9 +24,10 @@ import os
 import sys
 import tempfile
 
-# The beams' bearings as hmt-slam's CARMEN reader takes them.
+# A laser line's readings, and the beams' bearings as hmt-slam's CARMEN
+# reader takes them.
 sys.path.insert(0, __file__.rsplit("/", 1)[0])
-from map_sharpness import beam_angles  # noqa: E402
+from map_sharpness import laser_readings  # noqa: E402
 
 
 def open_text(path, mode):
@@ -34,21 +35,13 @@ def open_text(path, mode):
 
 
 def laser_fields(s):
-    """(first reading's field, beam count, the beams' bearings in rad) of a
-    FLASER or ROBOTLASER1 line; ValueError or IndexError if it does not parse."""
-    if s[0] == "FLASER":
-        n = int(s[1])
-        first = 2
-    else:  # ROBOTLASER1 type start fov resolution max_range accuracy mode n r1..rn
-        n = int(s[8])
-        first = 9
-    if n < 0 or len(s) < first + n:
+    """(field of the first reading, readings, bearings in rad) of a FLASER or
+    ROBOTLASER1 line; ValueError or IndexError if it does not parse or is
+    short of its beams."""
+    first, n, readings, bearings = laser_readings(s)
+    if n < 0 or len(readings) != n:
         raise IndexError
-    for i in range(first, first + n):
-        float(s[i])
-    if s[0] == "FLASER":
-        return first, n, beam_angles(n)
-    return first, n, beam_angles(n, float(s[2]), float(s[4]))
+    return first, readings, bearings
 
 
 def laser_lines(path):
@@ -71,11 +64,10 @@ def largest_reading(path):
         if s is None:
             continue
         try:
-            first, count, _ = laser_fields(s)
+            _, readings, _ = laser_fields(s)
         except (ValueError, IndexError):
             fail_line(path, n, s[0])
-        for v in s[first:first + count]:
-            r = float(v)
+        for r in readings:
             if math.isfinite(r) and (top is None or r > top):
                 top = r
     if top is None:
@@ -93,15 +85,15 @@ def write_degraded(inp, out, reach, fov, code):
                 g.write(line)
                 continue
             try:
-                first, count, bearings = laser_fields(s)
+                first, values, bearings = laser_fields(s)
             except (ValueError, IndexError):
                 fail_line(inp, n, s[0])
             if s[0] == "ROBOTLASER1":
                 s[5] = code
+            count = len(values)
             middle = (bearings[0] + bearings[-1]) / 2 if count else 0.0
-            for i in range(count):
-                r = float(s[first + i])  # nan and inf stay as written: no reading either way
-                if not math.isfinite(r):
+            for i, r in enumerate(values):
+                if not math.isfinite(r):  # nan and inf stay as written: no reading either way
                     continue
                 beyond = reach is not None and r > reach
                 aside = half is not None and abs(bearings[i] - middle) > half + 1e-9

@@ -69,6 +69,20 @@ def beam_angles(n, start=None, resolution=None):
     return -math.pi / 2 + res * np.arange(n)
 
 
+def laser_readings(s):
+    """(field of the first reading, beam count, readings, bearings) of the
+    fields `s` of a FLASER or ROBOTLASER1 line; ValueError or IndexError where
+    they do not parse. The readings are as many as the line holds, up to the
+    count: the caller tells a short line."""
+    if s[0] == "FLASER":
+        first, n = 2, int(s[1])
+        angles = beam_angles(n)
+    else:  # ROBOTLASER1 type start fov resolution max_range accuracy mode n r1..rn
+        first, n = 9, int(s[8])
+        angles = beam_angles(n, float(s[2]), float(s[4]))
+    return first, n, np.array(s[first:first + n], dtype=float), angles
+
+
 def load_scans(path):
     """(timestamp, bearings, ranges) per FLASER / ROBOTLASER1 line."""
     opener = gzip.open if path.endswith(".gz") else open
@@ -80,15 +94,7 @@ def load_scans(path):
                 if not s or s[0] not in ("FLASER", "ROBOTLASER1"):
                     continue
                 try:
-                    if s[0] == "FLASER":
-                        n = int(s[1])
-                        ranges = np.array(s[2:2 + n], dtype=float)
-                        angles = beam_angles(n)
-                    else:
-                        start, res = float(s[2]), float(s[4])
-                        n = int(s[8])
-                        ranges = np.array(s[9:9 + n], dtype=float)
-                        angles = beam_angles(n, start, res)
+                    _, n, ranges, angles = laser_readings(s)
                     stamp = float(s[-3])
                 except (ValueError, IndexError):
                     fail(f"{path}:{no}: malformed {s[0]} line")
