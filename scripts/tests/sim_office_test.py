@@ -1,0 +1,95 @@
+#!/usr/bin/python3
+"""Tests of scripts/sim_office.py: the log it writes is a CARMEN log whose
+scans agree with its reference poses, of a walk that stays inside the
+corridors and rooms.
+
+Run directly or through ctest (sim_office_script).
+"""
+import gzip
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCRIPTS = os.path.join(HERE, "..")
+SCRIPT = os.path.join(SCRIPTS, "sim_office.py")
+sys.path.insert(0, SCRIPTS)
+import sim_office  # noqa: E402
+from sim_campus_test import read  # noqa: E402
+
+LENGTH = 300  # metres: enough for crossings, doors and a room or two
+
+
+def crosses(p, q, segs):
+    """Whether the move p -> q crosses any wall segment."""
+    d = q - p
+    e = segs[:, 2:4] - segs[:, 0:2]
+    w = segs[:, 0:2] - p
+    den = d[0] * e[:, 1] - d[1] * e[:, 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = (w[:, 0] * e[:, 1] - w[:, 1] * e[:, 0]) / den
+        u = (w[:, 0] * d[1] - w[:, 1] * d[0]) / den
+    return bool(np.any((np.abs(den) > 1e-12) & (t >= 0) & (t <= 1) & (u >= 0) & (u <= 1)))
+
+
+class SimOffice(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = tempfile.TemporaryDirectory()
+        cls.prefix = os.path.join(cls.dir.name, "office")
+        r = subprocess.run([sys.executable, SCRIPT, cls.prefix, "--seed", "2",
+                            "--length", str(LENGTH)], capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        cls.scans, cls.odo, cls.stamps, cls.ref = read(cls.prefix)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.dir.cleanup()
+
+    def test_a_scan_per_reference_pose_on_one_clock(self):
+        self.assertEqual(len(self.scans), len(self.ref))
+        self.assertTrue(all(len(s) == 181 for s in self.scans))
+        self.assertEqual(self.stamps, [r[0] for r in self.ref])
+        self.assertEqual(self.odo[0], [0.0, 0.0, 0.0])
+        steps = [math.hypot(b[1] - a[1], b[2] - a[2]) for a, b in zip(self.ref, self.ref[1:])]
+        self.assertGreaterEqual(sum(steps), LENGTH)
+        self.assertLessEqual(max(steps), sim_office.STEP + 1e-6)
+
+    def test_the_walk_never_passes_through_a_wall(self):
+        segs = sim_office.Floor(np.random.default_rng(2)).segs
+        poses = np.array([r[1:3] for r in self.ref])
+        for p, q in zip(poses, poses[1:]):
+            self.assertFalse(crosses(p, q, segs), f"{p} -> {q}")
+        # Nor stands next to one: every scan's nearest return is 0.3 m off or more.
+        self.assertGreater(min(min(s) for s in self.scans), 0.3)
+
+    def test_an_indoor_scene_and_rooms_looked_into(self):
+        r = [v for s in self.scans for v in s if v < 81.0]
+        self.assertLess(float(np.median(r)), 10.0)
+        # Poses more than half a metre past a corridor's walls: inside a room.
+        inside = [p for p in self.ref
+                  if min(abs(p[2] - sim_office.corridor_y(j)) for j in range(sim_office.NY + 1))
+                  > sim_office.CORRIDOR / 2 + 0.5]
+        self.assertGreater(len(inside), 0)
+
+    def test_the_same_seed_writes_the_same_log(self):
+        prefix = os.path.join(self.dir.name, "again")
+        subprocess.run([sys.executable, SCRIPT, prefix, "--seed", "2", "--length", str(LENGTH)],
+                       check=True, capture_output=True)
+        self.assertEqual(read(prefix), (self.scans, self.odo, self.stamps, self.ref))
+
+    def test_a_length_that_is_not_positive_is_refused(self):
+        r = subprocess.run([sys.executable, SCRIPT, os.path.join(self.dir.name, "x"),
+                            "--length", "0"], capture_output=True, text=True)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("--length", r.stderr)
+        self.assertFalse(os.path.exists(os.path.join(self.dir.name, "x.log.gz")))
+
+
+if __name__ == "__main__":
+    unittest.main()
