@@ -54,7 +54,7 @@ class Floor:
 
     def __init__(self, rng):
         self.segs = []
-        self.doors = {}  # (corridor key, along-coordinate) -> room centre
+        self.doors = {}  # (corridor index, door's x) -> the room's centre
         self.rng = rng
         h = CORRIDOR / 2
         x_end, y_end = corridor_x(NX), corridor_y(NY)
@@ -93,12 +93,11 @@ class Floor:
             x = x0
             for a, b in zip(cuts[:-1], cuts[1:]):
                 d = rng.uniform(a + 0.5, b - 0.5 - DOOR)
-                closed = rng.random() < 0.25
-                if closed:
+                if rng.random() < 0.25:  # a closed door: wall on
                     continue
                 self.wall(x, y_face, d, y_face)
                 x = d + DOOR
-                self.doors[("h", row, d + DOOR / 2)] = (0.5 * (a + b), 0.5 * (y_face + y_back))
+                self.doors[(row, d + DOOR / 2)] = (0.5 * (a + b), 0.5 * (y_face + y_back))
                 # In the half away from the door, where the robot never goes.
                 y_mid = 0.5 * (y_face + y_back)
                 self.furniture(a, min(y_mid, y_back), b, max(y_mid, y_back))
@@ -126,7 +125,7 @@ class Floor:
                 y = corridor_y(j) + side * (h - 0.2)
                 if all(abs(t - corridor_x(i)) > 2 for i in range(NX + 1)):
                     self.box(t - 0.5, y - 0.2, t + 0.5, y + 0.2)
-                    for key in [k for k in self.doors if k[1] == j and abs(k[2] - t) < 1.5]:
+                    for key in [k for k in self.doors if k[0] == j and abs(k[1] - t) < 1.5]:
                         del self.doors[key]
                 t += rng.uniform(10, 30)
 
@@ -161,8 +160,8 @@ def walk(floor, rng, length):
         x1, y1 = corridor_x(nxt[0]), corridor_y(nxt[1])
         if y0 == y1:  # along a corridor with rooms: perhaps look into one
             lo, hi = sorted((x0, x1))
-            doors = sorted((x, c) for (kind, row, x), c in floor.doors.items()
-                           if kind == "h" and row == j and lo < x < hi)
+            doors = sorted((x, c) for (row, x), c in floor.doors.items()
+                           if row == j and lo < x < hi)
             if x1 < x0:
                 doors.reverse()
             for x, (cx, cy) in doors:
