@@ -5,7 +5,6 @@ corridors and rooms.
 
 Run directly or through ctest (sim_office_script).
 """
-import gzip
 import math
 import os
 import subprocess
