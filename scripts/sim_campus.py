@@ -140,6 +140,30 @@ def odometry(poses, rng, harsh):
     return odo
 
 
+def write_log(out, segs, poses, odo, rng, fov, period):
+    """Writes OUT.log.gz (a scan of `segs` from each true pose, with its
+    odometry; FLASER lines, or ROBOTLASER1 for fov 360) and
+    OUT.reference.txt.gz (the true poses), one scan every `period` seconds;
+    returns the path's length (m)."""
+    with gzip.open(out + ".log.gz", "wt") as f, gzip.open(out + ".reference.txt.gz", "wt") as g:
+        for k, (x, y, th) in enumerate(poses):
+            r = raycast(segs, x, y, th, rng, fov)
+            o = odo[k]
+            ot = math.atan2(math.sin(o[2]), math.cos(o[2]))
+            t = 100.0 + period * k
+            ranges = " ".join("%.3f" % v for v in r)
+            if fov == 180:
+                f.write("FLASER 181 " + ranges +
+                        " %.4f %.4f %.5f %.4f %.4f %.5f %.3f sim %.3f\n" % (o[0], o[1], ot, o[0], o[1], ot, t, t))
+            else:  # a full turn: ROBOTLASER1, which states its first bearing and step
+                f.write("ROBOTLASER1 0 %.6f %.6f %.6f %.1f 0.01 0 %d %s 0"
+                        " %.4f %.4f %.5f %.4f %.4f %.5f 0 0 0 0 0 %.3f sim %.3f\n"
+                        % (-math.pi, 2 * math.pi, math.radians(1), MAX_RANGE, len(r), ranges,
+                           o[0], o[1], ot, o[0], o[1], ot, t, t))
+            g.write("%.3f %.4f %.4f %.5f\n" % (t, x, y, math.atan2(math.sin(th), math.cos(th))))
+    return float(np.sum(np.hypot(*np.diff(poses[:, :2], axis=0).T)))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("out")
@@ -154,23 +178,7 @@ def main():
     S = world(rng, harsh)
     poses = drive(rng)
     odo = odometry(poses, rng, harsh)
-    with gzip.open(a.out + ".log.gz", "wt") as f, gzip.open(a.out + ".reference.txt.gz", "wt") as g:
-        for k, (x, y, th) in enumerate(poses):
-            r = raycast(S, x, y, th, rng, a.fov)
-            o = odo[k]
-            ot = math.atan2(math.sin(o[2]), math.cos(o[2]))
-            t = 100.0 + 2.0 * k
-            ranges = " ".join("%.3f" % v for v in r)
-            if a.fov == 180:
-                f.write("FLASER 181 " + ranges +
-                        " %.4f %.4f %.5f %.4f %.4f %.5f %.3f sim %.3f\n" % (o[0], o[1], ot, o[0], o[1], ot, t, t))
-            else:  # a full turn: ROBOTLASER1, which states its first bearing and step
-                f.write("ROBOTLASER1 0 %.6f %.6f %.6f %.1f 0.01 0 %d %s 0"
-                        " %.4f %.4f %.5f %.4f %.4f %.5f 0 0 0 0 0 %.3f sim %.3f\n"
-                        % (-math.pi, 2 * math.pi, math.radians(1), MAX_RANGE, len(r), ranges,
-                           o[0], o[1], ot, o[0], o[1], ot, t, t))
-            g.write("%.3f %.4f %.4f %.5f\n" % (t, x, y, math.atan2(math.sin(th), math.cos(th))))
-    length = float(np.sum(np.hypot(*np.diff(poses[:, :2], axis=0).T)))
+    length = write_log(a.out, S, poses, odo, rng, a.fov, 2.0)
     print("%d scans, %d wall segments, path %.0f m: %s.log.gz, %s.reference.txt.gz"
           % (len(poses), len(S), length, a.out, a.out))
 

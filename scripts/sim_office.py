@@ -24,14 +24,13 @@ poses, "t x y theta" per scan, for scripts/ate.py).
 Usage: sim_office.py OUT [--seed N] [--odometry fair|harsh] [--length M]
 """
 import argparse
-import gzip
 import math
 import sys
 
 import numpy as np
 
 sys.path.insert(0, __file__.rsplit("/", 1)[0])
-from sim_campus import odometry, raycast  # noqa: E402
+from sim_campus import odometry, write_log  # noqa: E402
 
 NX, NY = 4, 2        # blocks across and along
 BLOCK_W = 30.0       # a block's width (m)
@@ -188,16 +187,7 @@ def main():
     floor = Floor(rng)
     poses = walk(floor, rng, a.length)
     odo = odometry(poses, rng, a.odometry == "harsh")
-    with gzip.open(a.out + ".log.gz", "wt") as f, gzip.open(a.out + ".reference.txt.gz", "wt") as g:
-        for k, (x, y, th) in enumerate(poses):
-            r = raycast(floor.segs, x, y, th, rng, 180)
-            o = odo[k]
-            ot = math.atan2(math.sin(o[2]), math.cos(o[2]))
-            t = 100.0 + 0.5 * k
-            f.write("FLASER 181 " + " ".join("%.3f" % v for v in r) +
-                    " %.4f %.4f %.5f %.4f %.4f %.5f %.3f sim %.3f\n" % (o[0], o[1], ot, o[0], o[1], ot, t, t))
-            g.write("%.3f %.4f %.4f %.5f\n" % (t, x, y, math.atan2(math.sin(th), math.cos(th))))
-    path = float(np.sum(np.hypot(*np.diff(poses[:, :2], axis=0).T)))
+    path = write_log(a.out, floor.segs, poses, odo, rng, 180, 0.5)
     print("%d scans, %d wall segments, %d open doors, path %.0f m: %s.log.gz, %s.reference.txt.gz"
           % (len(poses), len(floor.segs), len(floor.doors), path, a.out, a.out))
 
