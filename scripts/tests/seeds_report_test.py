@@ -90,6 +90,20 @@ class SeedsReport(unittest.TestCase):
         # A stricter threshold counts more runs.
         self.assertIn("above 0.06 m: 3", run(self.out, "--threshold", "0.06").stdout)
 
+    def test_many_open_loops_are_summed_up_a_run_a_line(self):
+        self.add("office1", 1, rmse=6.0, loops=[(4.0, False)] * 20 + [(0.1, True)])
+        self.add("office1", 2, rmse=5.0, loops=[(2.5, False)] * 11 + [(9.0, False)])
+        r = run(self.out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.rows(r.stdout)["office1"][-1], "1/33")
+        self.assertIn("loops of the references left open: 32\n"
+                      "  - office1 seed 1: 20 open, error median up to 4.000 m "
+                      "(office1/seed1/loops.json)\n"
+                      "  - office1 seed 2: 12 open, error median up to 9.000 m "
+                      "(office1/seed2/loops.json)\n"
+                      "- failed runs: 0", r.stdout)
+        self.assertNotIn("steps 0 -> 300", r.stdout)
+
     def test_failed_run_is_counted_not_dropped(self):
         self.add("csail", 1, rmse=0.13)
         self.add("csail", 2, error="timeout: still running")
