@@ -27,14 +27,13 @@ WORLDS=${WORLDS:-1 2 3 4 5 6}
 LENGTH=${LENGTH:-2000}
 ODOMETRY=${ODOMETRY:-fair}
 OUT_DIR=${OUT_DIR:-/tmp/hmt-bench-office}
+BENCH_NAME=bench_office
+# shellcheck source=scripts/bench_lib.sh
+source "$REPO/scripts/bench_lib.sh"
 
-die() {
-  echo "bench_office: $*" >&2
-  exit 1
-}
-[[ -n "${WORLDS// /}" ]] || die "WORLDS is empty"
+[[ -n "${WORLDS// /}" ]] || bench_die "WORLDS is empty"
 for w in $WORLDS; do
-  [[ "$w" =~ ^[0-9]+$ ]] || die "WORLDS must be non-negative integers, not '$w'"
+  [[ "$w" =~ ^[0-9]+$ ]] || bench_die "WORLDS must be non-negative integers, not '$w'"
 done
 
 # Written afresh every time: a log left by an older simulator would be
@@ -46,7 +45,7 @@ logs=()
 for w in $WORLDS; do
   /usr/bin/python3 "$REPO/scripts/sim_office.py" "$data/carmen/office$w" --seed "$w" \
     --length "$LENGTH" --odometry "$ODOMETRY" >/dev/null ||
-    die "sim_office.py failed for world $w (LENGTH=$LENGTH, ODOMETRY=$ODOMETRY)"
+    bench_die "sim_office.py failed for world $w (LENGTH=$LENGTH, ODOMETRY=$ODOMETRY)"
   logs+=("office$w")
 done
 
