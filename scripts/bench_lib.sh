@@ -20,6 +20,16 @@ bench_need_tool() {
   fi
 }
 
+# bench_need_counts NAME VALUE: fails unless VALUE is a space-separated,
+# non-empty list of non-negative integers (seeds, worlds), naming NAME.
+bench_need_counts() {
+  local v
+  [[ -n "${2// /}" ]] || bench_die "$1 is empty"
+  for v in $2; do
+    [[ "$v" =~ ^[0-9]+$ ]] || bench_die "$1 must be non-negative integers, not '$v'"
+  done
+}
+
 # bench_measure TIMEOUT_S TIME_FILE OUTPUT_FILE CMD [ARGS...]
 # Runs CMD under GNU time -v (written to TIME_FILE) with a timeout, stdin from
 # /dev/null (nothing may wait for a key), stdout+stderr to OUTPUT_FILE.

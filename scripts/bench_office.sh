@@ -31,10 +31,7 @@ BENCH_NAME=bench_office
 # shellcheck source=scripts/bench_lib.sh
 source "$REPO/scripts/bench_lib.sh"
 
-[[ -n "${WORLDS// /}" ]] || bench_die "WORLDS is empty"
-for w in $WORLDS; do
-  [[ "$w" =~ ^[0-9]+$ ]] || bench_die "WORLDS must be non-negative integers, not '$w'"
-done
+bench_need_counts WORLDS "$WORLDS"
 
 # Written afresh every time: a log left by an older simulator would be
 # scored against what that one drew.

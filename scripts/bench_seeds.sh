@@ -48,10 +48,7 @@ PY=/usr/bin/python3
 
 [[ "$JOBS" =~ ^[1-9][0-9]*$ ]] || bench_die "JOBS must be a positive integer, not '$JOBS'"
 [[ "$TIMEOUT" =~ ^[1-9][0-9]*$ ]] || bench_die "TIMEOUT must be a positive integer, not '$TIMEOUT'"
-for s in $SEEDS; do
-  [[ "$s" =~ ^[0-9]+$ ]] || bench_die "SEEDS must be non-negative integers, not '$s'"
-done
-[[ -n "${SEEDS// /}" ]] || bench_die "SEEDS is empty"
+bench_need_counts SEEDS "$SEEDS"
 bench_need_tool "$HMT_SLAM" "build first: scripts/build.sh"
 bench_need_tool /usr/bin/time "GNU time: scripts/setup.sh installs it"
 bench_need_tool "$PY"
