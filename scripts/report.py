@@ -12,7 +12,7 @@ table, and the page says which input was missing):
                        P(current area = a) per step (002 Eq. 14, Fig. 10) and
                        the most probable area per step
   tsbi_events.csv      step,time,hypothesis,hypothesis_probability,from_area,
-                       outcome,area,log_f,probability,match_ratio,child
+                       outcome,area,log_f,probability,match_ratio,child,x,y,theta
                                                            -> report/tsbi_events.png
                        (P(new) vs P(known a) at every new-area event) and a
                        table of the loop-closure candidates (known, P > 0.01)
@@ -127,13 +127,18 @@ def parse_optional_int(text):
     return None if text.strip() == "" else parse_int(text)
 
 
+def parse_optional_float(text):
+    return None if text.strip() == "" else parse_float(text)
+
+
 def parse_outcome(text):
     if text not in ("new", "known"):
         raise ValueError("'new' or 'known'")
     return text
 
 
-I, F, OPT_I, OUTCOME = parse_int, parse_float, parse_optional_int, parse_outcome
+I, F, OPT_I, OPT_F, OUTCOME = (parse_int, parse_float, parse_optional_int, parse_optional_float,
+                               parse_outcome)
 
 CSV_SPECS = {
     "topological_pmf.csv": [("step", I), ("time", F), ("area", I), ("probability", F)],
@@ -142,7 +147,8 @@ CSV_SPECS = {
     "tsbi_events.csv": [("step", I), ("time", F), ("hypothesis", I),
                         ("hypothesis_probability", F), ("from_area", I),
                         ("outcome", OUTCOME), ("area", OPT_I), ("log_f", F),
-                        ("probability", F), ("match_ratio", F), ("child", OPT_I)],
+                        ("probability", F), ("match_ratio", F), ("child", OPT_I),
+                        ("x", OPT_F), ("y", OPT_F), ("theta", OPT_F)],
     "process_times.csv": [("step", I), ("time", F)] + [(c, F) for c, _ in PROCESSES],
     "ess.csv": [("step", I), ("time", F), ("hypothesis", I), ("probability", F),
                 ("area", I), ("ess", F), ("particles", I)],

@@ -58,11 +58,11 @@ def make_output_folder(root):
         times.append(f"{s},{t},{20 + s % 4}.5,{3.25 if s % 5 == 0 else 0},"
                      f"{12.5 if event else 0},{40 if s == 20 else 0}")
     tsbi = ["step,time,hypothesis,hypothesis_probability,from_area,outcome,area,"
-            "log_f,probability,match_ratio,child",
-            f"10,{t0 + 2.5:.6f},0,1,1,new,2,8.0000,0.7,0.0000,1",
-            f"10,{t0 + 2.5:.6f},0,1,1,known,3,8.1000,0.3,0.6000,2",
-            f"20,{t0 + 5:.6f},1,0.7,2,new,,8.0000,1e-06,0.0000,",
-            f"20,{t0 + 5:.6f},1,0.7,2,known,1,21.6613,0.999999,0.8471,3"]
+            "log_f,probability,match_ratio,child,x,y,theta",
+            f"10,{t0 + 2.5:.6f},0,1,1,new,2,8.0000,0.7,0.0000,1,,,",
+            f"10,{t0 + 2.5:.6f},0,1,1,known,3,8.1000,0.3,0.6000,2,1.5,-2.25,0.125",
+            f"20,{t0 + 5:.6f},1,0.7,2,new,,8.0000,1e-06,0.0000,,,,",
+            f"20,{t0 + 5:.6f},1,0.7,2,known,1,21.6613,0.999999,0.8471,3,0.5,0.25,-3.1"]
     memory = ["step,time,peak_rss_mb,map_memory_mb,hypotheses,areas",
               f"0,{t0:.6f},90.5,0.7,1,1", f"15,{t0 + 3.75:.6f},120.25,10.5,2,2",
               f"29,{t0 + 7.25:.6f},130,12,1,3"]

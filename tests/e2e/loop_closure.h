@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -37,14 +38,20 @@ inline std::vector<std::vector<std::string>> read_csv(const std::string& path) {
 
 inline void expect_loop_closed_into_area_1(const std::string& out, int from_area) {
   // tsbi_events.csv: step,time,hypothesis,hypothesis_probability,from_area,
-  // outcome,area,log_f,probability,match_ratio,child
+  // outcome,area,log_f,probability,match_ratio,child,x,y,theta
   struct Weighed {
     double p_new = -1, p_one = -1;
     std::string from;
   };
   std::map<std::string, Weighed> events;  // by "step/hypothesis"
   for (const auto& r : read_csv(out + "/tsbi_events.csv")) {
-    ASSERT_EQ(r.size(), 11u);
+    ASSERT_EQ(r.size(), 14u);
+    // A closure's best mode (the robot in the known area's frame); none for
+    // the new area.
+    if (r[5] == "known")
+      for (size_t c = 11; c < 14; ++c) EXPECT_TRUE(std::isfinite(std::stod(r[c]))) << r[c];
+    else
+      EXPECT_EQ(r[11] + r[12] + r[13], "");
     Weighed& w = events[r[0] + "/" + r[2]];
     w.from = r[4];
     if (r[5] == "new") w.p_new = std::stod(r[8]);
@@ -66,6 +73,15 @@ inline void expect_loop_closed_into_area_1(const std::string& out, int from_area
     if (to > 2 || a["measurements"].get<int>() >= 2) loop_arc = true;
   }
   EXPECT_TRUE(loop_arc) << "the final topology has no arc from a later area into area 1";
+  // Every keyframe of every area, as [time, x, y, theta] in the area's frame.
+  for (const auto& a : topo["areas"]) {
+    const auto& kp = a["keyframe_poses"];
+    ASSERT_EQ(kp.size(), a["keyframes"].get<size_t>()) << "area " << a["id"];
+    for (const auto& k : kp) {
+      ASSERT_EQ(k.size(), 4u);
+      for (const auto& v : k) EXPECT_TRUE(std::isfinite(v.get<double>()));
+    }
+  }
 
   bool settled = false;
   for (const auto& r : read_csv(out + "/topological_pmf.csv"))
@@ -74,6 +90,11 @@ inline void expect_loop_closed_into_area_1(const std::string& out, int from_area
 
   const auto summary = nlohmann::json::parse(slurp(out + "/summary.json"));
   EXPECT_GE(summary["loop_closures_accepted"].get<int>(), 1);
+  // The hypothesis the outputs draw was made by some event's outcome.
+  const std::string best = std::to_string(summary["best_hypothesis"].get<unsigned>());
+  bool made = false;
+  for (const auto& r : read_csv(out + "/tsbi_events.csv")) made |= r[10] == best;
+  EXPECT_TRUE(made) << "best_hypothesis " << best << " is no event's child";
 }
 
 // tsbi_candidates.csv agrees with tsbi_events.csv: every known outcome of
@@ -100,7 +121,7 @@ inline std::vector<std::vector<std::string>> expect_candidates_agree_with_events
   }
   std::map<std::string, std::string> known;
   for (const auto& r : read_csv(out + "/tsbi_events.csv"))
-    if (r.size() == 11u && r[5] == "known") known[r[0] + "/" + r[2] + "/" + r[6]] = r[7];
+    if (r.size() == 14u && r[5] == "known") known[r[0] + "/" + r[2] + "/" + r[6]] = r[7];
   EXPECT_EQ(reported, known) << "the candidates reported as outcomes are not the events' known ones";
   return candidates;
 }

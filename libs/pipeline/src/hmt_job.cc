@@ -99,6 +99,9 @@ nlohmann::json run_summary(const framework::HmtSystem& system) {
   j["loop_closures"] = closures;
   j["max_hypotheses_alive"] = st.max_hypotheses_alive;
   j["hypotheses_at_end"] = filter.hypotheses().size();
+  // The hypothesis whose map the outputs draw (tsbi_events.csv's `child`
+  // leads back from it through the decisions its map rests on).
+  if (!filter.hypotheses().empty()) j["best_hypothesis"] = filter.best().id;
   j["metric_slam"] = metric_summary(filter.hypotheses().empty() ? metric_slam::RbpfStats{}
                                                               : filter.best().filter.stats());
   j["forgotten_path_entries"] = st.forgotten_path_entries;

@@ -1,5 +1,6 @@
 #include "hmt/pipeline/hmt_outputs.h"
 
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -74,7 +75,7 @@ void write_tsbi_events_csv(const std::string& path,
                            const std::vector<hybrid::TransitionEvent>& events) {
   std::ostringstream o;
   o << "step,time,hypothesis,hypothesis_probability,from_area,outcome,area,"
-       "log_f,probability,match_ratio,child\n";
+       "log_f,probability,match_ratio,child,x,y,theta\n";
   for (const auto& ev : events)
     for (size_t i = 0; i < ev.outcomes.size(); ++i) {
       const auto& oc = ev.outcomes[i];
@@ -88,6 +89,12 @@ void write_tsbi_events_csv(const std::string& path,
       o << ',' << fmt("%.4f", oc.log_f) << ',' << fmt("%.6g", oc.probability) << ','
         << fmt("%.4f", oc.match_ratio) << ',';
       if (ev.children[i] != hybrid::kNoChild) o << ev.children[i];
+      // A closure's best mode: the robot in the known area's frame.
+      if (!oc.is_new())
+        o << ',' << fmt("%.4f", oc.robot.mean.x) << ',' << fmt("%.4f", oc.robot.mean.y) << ','
+          << fmt("%.5f", oc.robot.mean.theta);
+      else
+        o << ",,,";
       o << '\n';
     }
   write_text_atomically(path, o.str());
@@ -122,6 +129,14 @@ void write_topology_json(const std::string& path, const topology::HmtMap& map,
     nlohmann::json ja;
     ja["id"] = id;
     ja["keyframes"] = a.keyframes.size();
+    // Each keyframe's scan time and pose in the area's frame: with a
+    // reference trajectory, where the area lies (scripts/closure_check.py).
+    // Times to the microsecond, as the CSVs write them: a ROS bag's
+    // nanosecond clock and a CARMEN log's seconds then give the same bytes.
+    ja["keyframe_poses"] = nlohmann::json::array();
+    for (const topology::Keyframe& k : a.keyframes)
+      ja["keyframe_poses"].push_back(
+          {std::round(k.scan.timestamp * 1e6) / 1e6, k.pose.x, k.pose.y, k.pose.theta});
     ja["parent"] = a.frame.parent == topology::kNoArea ? nlohmann::json(nullptr)
                                                        : nlohmann::json(a.frame.parent);
     ja["created_step"] = a.frame.created_step;
