@@ -4,12 +4,15 @@
 # (metric_slam.seed), scored against the log's reference trajectory (position
 # RMSE, scripts/ate.py) and, for Intel, the ground-truth relations
 # (scripts/relation_error.py), and whether it closes the loops the reference
-# closes (scripts/loops_closed.py). One draw of a particle filter says little about
+# closes (scripts/loops_closed.py), and which of its closures the reference
+# agrees with (scripts/closure_check.py). One draw of a particle filter says little about
 # a change (a log's RMSE moves by a factor of two to five between seeds), so
 # this is the benchmark to judge one by: scripts/seeds_report.py prints per
 # log each seed's RMSE, the mean and the worst, wall time, peak RSS, areas,
-# closures and the reference's loops closed, then the mean over every run,
-# the runs above THRESHOLD and the loops left open.
+# closures, the closures judged right and the reference's loops closed, then
+# the mean over every run, the runs above THRESHOLD, the closures the
+# reference disagrees with (the first of each run: where its map broke) and
+# the loops left open.
 #
 # Environment:
 #   LOGS       [seattle freiburg-101 csail edmonton aces fhw intel acapulco
@@ -105,6 +108,9 @@ run_one() {
   "$PY" "$REPO/scripts/loops_closed.py" "$d/run/trajectory.tum" \
     "$DATASETS/carmen/$log.reference.txt.gz" --json >"$d/loops.json" 2>/dev/null ||
     rm -f "$d/loops.json"
+  "$PY" "$REPO/scripts/closure_check.py" "$d/run" \
+    "$DATASETS/carmen/$log.reference.txt.gz" --json >"$d/closures.json" 2>/dev/null ||
+    rm -f "$d/closures.json"
   if [[ -f "$DATASETS/relations/$log.relations" ]]; then
     "$PY" "$REPO/scripts/relation_error.py" "$d/run/trajectory.tum" \
       "$DATASETS/relations/$log.relations" --json >"$d/relations.json" 2>/dev/null ||

@@ -13,6 +13,7 @@ Usage: seeds_report.py OUT_DIR [--threshold M]
     ate.json        scripts/ate.py --json of the run's trajectory
     relations.json  (optional) scripts/relation_error.py --json
     loops.json      (optional) scripts/loops_closed.py --json
+    closures.json   (optional) scripts/closure_check.py --json
     time.txt        (optional) GNU time -v of the run
     summary.json    (optional) the run's own summary (areas, loop closures)
     error.txt       (optional) why the run failed; it is then counted as
@@ -21,10 +22,12 @@ Usage: seeds_report.py OUT_DIR [--threshold M]
 
 Prints a Markdown table: per log, each seed's position RMSE (and, where
 given, relation error), the mean and the worst, the mean wall time and peak
-RSS, areas and closures, and the reference's loops closed over all seeds;
-then every run's mean, the worst, the runs above the threshold, each loop
-left open (beyond MAX_LOOPS_LISTED of them, a line a run instead) and the
-failed runs. Exit 4 when OUT_DIR holds no run.
+RSS, areas and closures, the closures the reference agrees with and the
+reference's loops closed over all seeds; then every run's mean, the worst,
+the runs above the threshold, each run's closures the reference disagrees
+with (and the first of them: where its map broke), each loop left open
+(beyond MAX_LOOPS_LISTED of them, a line a run instead) and the failed
+runs. Exit 4 when OUT_DIR holds no run.
 """
 import argparse
 import json
@@ -35,6 +38,8 @@ import sys
 
 # More open loops than this are summed up a run a line.
 MAX_LOOPS_LISTED = 30
+# closure_check.py's verdicts of a closure the reference disagrees with.
+WRONG = ("wrong_place", "elsewhere")
 
 
 def read_json(path):
@@ -66,7 +71,8 @@ def time_report(path):
 def read_run(d):
     """One run's figures; 'error' says why it has none."""
     run = {"rmse": None, "relations": None, "wall": None, "rss": None,
-           "areas": None, "closures": None, "loops": None, "error": None}
+           "areas": None, "closures": None, "loops": None, "verdicts": None,
+           "first_wrong": None, "error": None}
     err = os.path.join(d, "error.txt")
     if os.path.exists(err):
         with open(err) as f:
@@ -84,6 +90,11 @@ def read_run(d):
     loops = read_json(os.path.join(d, "loops.json"))
     if loops is not None and isinstance(loops.get("each"), list):
         run["loops"] = loops["each"]
+    checked = read_json(os.path.join(d, "closures.json"))
+    if checked is not None and isinstance(checked.get("counts"), dict):
+        run["verdicts"] = checked["counts"]
+        if isinstance(checked.get("first_wrong_closure"), dict):
+            run["first_wrong"] = checked["first_wrong_closure"]
     run["wall"], run["rss"] = time_report(os.path.join(d, "time.txt"))
     summary = read_json(os.path.join(d, "summary.json")) or {}
     if isinstance(summary.get("areas"), int):
@@ -134,10 +145,11 @@ def report(logs, threshold):
     seeds = sorted({s for runs in logs.values() for s in runs})
     lines = []
     head = ["log"] + [f"seed {s}" for s in seeds] + ["mean", "worst", "wall s", "peak MB",
-                                                     "areas", "closures", "loops closed"]
+                                                     "areas", "closures", "closures right",
+                                                     "loops closed"]
     lines.append("| " + " | ".join(head) + " |")
     lines.append("|" + "---|" * len(head))
-    every, failed, open_loops = [], [], []
+    every, failed, open_loops, wrong = [], [], [], []
     for log, runs in logs.items():
         row = [log]
         for s in seeds:
@@ -158,6 +170,15 @@ def report(logs, threshold):
         row += [fmt(mean(rmse)), fmt(max(rmse) if rmse else None),
                 fmt(mean([r["wall"] for r in ok]), 1), fmt(mean([r["rss"] for r in ok]), 0),
                 fmt(mean([r["areas"] for r in ok]), 1), fmt(mean([r["closures"] for r in ok]), 1)]
+        judged = [(s, r) for s, r in runs.items()
+                  if r["error"] is None and r["verdicts"] is not None]
+        if judged:
+            right = sum(r["verdicts"].get("right", 0) for _, r in judged)
+            bad = [(s, r, sum(r["verdicts"].get(v, 0) for v in WRONG)) for s, r in judged]
+            row.append(f"{right}/{right + sum(n for _, _, n in bad)}")
+            wrong += [(log, s, n, r["first_wrong"]) for s, r, n in bad if n]
+        else:
+            row.append("-")
         with_loops = [(s, r["loops"]) for s, r in runs.items()
                       if r["error"] is None and r["loops"] is not None]
         if with_loops:
@@ -181,6 +202,12 @@ def report(logs, threshold):
     if rel:
         lines.append(f"- relation error: mean {fmt(mean(rel), 4)} m over {len(rel)} runs, "
                      f"worst {fmt(max(rel), 4)} m")
+    if any(r["verdicts"] is not None for runs in logs.values() for r in runs.values()):
+        lines.append(f"- closures the references disagree with: {sum(n for _, _, n, _ in wrong)}")
+        for log, seed, n, first in wrong:
+            where = (f", the first at step {first.get('step')} ({first.get('from_area')} -> "
+                     f"{first.get('area')}, {first.get('verdict')})" if first else "")
+            lines.append(f"  - {log} seed {seed}: {n}{where}")
     lines.append(f"- loops of the references left open: {len(open_loops)}")
     if len(open_loops) <= MAX_LOOPS_LISTED:
         for log, seed, lp in open_loops:

@@ -33,7 +33,7 @@ class SeedsReport(unittest.TestCase):
         self.dir.cleanup()
 
     def add(self, log, seed, rmse=None, relations=None, wall=None, rss_mb=None, areas=None,
-            closures=None, loops=None, error=None):
+            closures=None, loops=None, checked=None, error=None):
         d = os.path.join(self.out, log, f"seed{seed}")
         os.makedirs(d)
         if rmse is not None:
@@ -54,6 +54,10 @@ class SeedsReport(unittest.TestCase):
                            "each": [{"first_pair": [10 * k, 10 * k + 300], "path_m": 40.0 + k,
                                      "pairs": 3, "median_error_m": e, "max_error_m": 2 * e,
                                      "closed": c} for k, (e, c) in enumerate(loops)]}, f)
+        if checked is not None:  # (counts, first wrong closure or None)
+            with open(os.path.join(d, "closures.json"), "w") as f:
+                json.dump({"decisions": [], "counts": checked[0],
+                           "first_wrong_closure": checked[1]}, f)
         if error is not None:
             with open(os.path.join(d, "error.txt"), "w") as f:
                 f.write(error)
@@ -77,7 +81,7 @@ class SeedsReport(unittest.TestCase):
         self.assertEqual(list(rows), ["log", "seattle", "intel"])  # the benchmark's order
         self.assertEqual(rows["intel"][:4], ["0.080 (rel. 0.0500)", "0.200 (rel. 0.0400)",
                                              "0.140", "0.200"])
-        self.assertEqual(rows["intel"][4:], ["9.0", "58", "17.0", "11.0", "3/4"])
+        self.assertEqual(rows["intel"][4:], ["9.0", "58", "17.0", "11.0", "-", "3/4"])
         self.assertEqual(rows["seattle"][-1], "-")  # no loops.json
         self.assertIn("loops of the references left open: 1\n"
                       "  - intel seed 2: steps 10 -> 310 (41 m of path), error median 0.450 m",
@@ -103,6 +107,20 @@ class SeedsReport(unittest.TestCase):
                       "(office1/seed2/loops.json)\n"
                       "- failed runs: 0", r.stdout)
         self.assertNotIn("steps 0 -> 300", r.stdout)
+
+    def test_closures_the_reference_disagrees_with(self):
+        first = {"step": 836, "from_area": 8, "area": 2, "verdict": "elsewhere"}
+        self.add("office4", 1, rmse=10.1,
+                 checked=({"new": 9, "right": 20, "elsewhere": 5, "wrong_place": 2,
+                           "unknown": 1}, first))
+        self.add("office4", 2, rmse=0.3, checked=({"new": 9, "right": 25}, None))
+        self.add("office4", 3, rmse=0.4)  # no closures.json
+        r = run(self.out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.rows(r.stdout)["office4"][-2], "45/52")
+        self.assertIn("- closures the references disagree with: 7\n"
+                      "  - office4 seed 1: 7, the first at step 836 (8 -> 2, elsewhere)\n"
+                      "- loops of the references left open", r.stdout)
 
     def test_failed_run_is_counted_not_dropped(self):
         self.add("csail", 1, rmse=0.13)
