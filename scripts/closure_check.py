@@ -102,14 +102,18 @@ def final_line(events, best):
     return line[::-1]
 
 
-def best_hypothesis(path):
+def read_json(path):
     try:
         with open(path, encoding="utf-8") as f:
-            summary = json.load(f)
+            return json.load(f)
     except OSError as e:
         fail(f"{path}: cannot read: {e.strerror}")
     except json.JSONDecodeError as e:
         fail(f"{path}: not JSON: {e}")
+
+
+def best_hypothesis(path):
+    summary = read_json(path)
     best = summary.get("best_hypothesis") if isinstance(summary, dict) else None
     if not isinstance(best, int) or isinstance(best, bool) or best < 0:
         fail(f"{path}: no best_hypothesis (an output of an older hmt-slam, or a run that "
@@ -241,15 +245,9 @@ def count_scans(path):
 
 
 def load_areas(path):
-    try:
-        with open(path, encoding="utf-8") as f:
-            topo = json.load(f)
-    except OSError as e:
-        fail(f"{path}: cannot read: {e.strerror}")
-    except json.JSONDecodeError as e:
-        fail(f"{path}: not JSON: {e}")
+    topo = read_json(path)
     areas = {}
-    for a in topo.get("areas", []):
+    for a in (topo.get("areas", []) if isinstance(topo, dict) else []):
         if "keyframe_poses" not in a:
             fail(f"{path}: area {a.get('id')} has no keyframe_poses (an output of an older "
                  f"hmt-slam)")

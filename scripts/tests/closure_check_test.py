@@ -104,6 +104,12 @@ class ClosureCheck(unittest.TestCase):
         return subprocess.run([sys.executable, SCRIPT, self.out, self.ref, *args],
                               capture_output=True, text=True)
 
+    def expect_error(self, text):
+        """The script fails on the files as written, naming `text`."""
+        r = self.run_script()
+        self.assertEqual(r.returncode, 4, r.stdout)
+        self.assertIn(text, r.stderr)
+
     def judged(self, *args):
         r = self.run_script("--json", *args)
         self.assertEqual(r.returncode, 0, r.stderr)
@@ -164,33 +170,23 @@ class ClosureCheck(unittest.TestCase):
 
     def test_bad_inputs_are_named_errors(self):
         self.write_all(keyframe_key="kf")
-        r = self.run_script()
-        self.assertEqual(r.returncode, 4)
-        self.assertIn("keyframe_poses", r.stderr)
+        self.expect_error("keyframe_poses")
         os.remove(os.path.join(self.out, "tsbi_events.csv"))
-        r = self.run_script()
-        self.assertEqual(r.returncode, 4)
-        self.assertIn("tsbi_events.csv", r.stderr)
+        self.expect_error("tsbi_events.csv")
         self.write_all()
         with open(os.path.join(self.out, "summary.json"), "w") as f:
             json.dump({"hypotheses_at_end": 0}, f)
-        r = self.run_script()
-        self.assertEqual(r.returncode, 4)
-        self.assertIn("best_hypothesis", r.stderr)
+        self.expect_error("best_hypothesis")
 
     def test_a_malformed_mode_or_reference_is_an_error(self):
         self.events[2][11] = "nan"
         self.write_all()
-        r = self.run_script()
-        self.assertEqual(r.returncode, 4)
-        self.assertIn("line 4: x", r.stderr)
+        self.expect_error("line 4: x")
         self.events[2][11] = self.right_mode[0]
         self.write_all()
         with open(self.ref, "w") as f:
             f.write("1.0 2.0\n")
-        r = self.run_script()
-        self.assertEqual(r.returncode, 4)
-        self.assertIn(self.ref, r.stderr)
+        self.expect_error(self.ref)
 
     def test_a_run_without_events_has_nothing_to_judge(self):
         self.events = []
@@ -203,9 +199,7 @@ class ClosureCheck(unittest.TestCase):
     def test_a_malformed_count_is_an_error(self):
         self.events[1][4] = "2.5"
         self.write_all()
-        r = self.run_script()
-        self.assertEqual(r.returncode, 4)
-        self.assertIn("line 3: from_area is '2.5', not a count", r.stderr)
+        self.expect_error("line 3: from_area is '2.5', not a count")
 
     def test_bad_arguments(self):
         for args in (["--near", "-1"], ["--tolerance", "nan"], ["--revisit", "0"]):
