@@ -27,8 +27,10 @@ A closure into known area A (its best mode: the robot in A's frame) is
                are rounded to 10 s, the infinite corridor's broken).
 A new area is
   new          no older area had a keyframe within --revisit of the robot;
-  revisit      one did: the robot was back in a mapped place and the loop
-               was left open there (a later closure may still join them).
+  revisit      one did: that place is now in two areas' maps. Harmless
+               where a later closure joins the two (a new area begun at a
+               doorway of a room mapped before); in a broken map, a loop
+               left open there.
 Only the keyframes taken before the robot entered the area it left at the
 event count: later ones may sit where a wrong closure put them.
 
