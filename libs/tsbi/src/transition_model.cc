@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <mutex>
 
 #include "hmt/area/ncut.h"
@@ -33,6 +34,78 @@ size_t points_in_extent(const grid::OccupancyGrid& map, const Pose2D& pose,
         map.cell_of(pose.x + c * p.x - s * p.y, pose.y + s * p.x + c * p.y);
     n += q.x >= lo.x && q.x <= hi.x && q.y >= lo.y && q.y <= hi.y;
   }
+  return n;
+}
+
+// The points (robot frame), placed at `pose`, that fall where `map` saw clear
+// free space: their cell and every cell within `window` of it observed, and
+// at most `free_logodds`. Returned in the map's frame.
+std::vector<Point2D> points_in_free_space(const grid::OccupancyGrid& map, const Pose2D& pose,
+                                          const std::vector<Point2D>& points, int window,
+                                          grid::LogOdds free_logodds) {
+  const double c = std::cos(pose.theta), s = std::sin(pose.theta);
+  std::vector<Point2D> out;
+  for (const Point2D& p : points) {
+    const Point2D w{pose.x + c * p.x - s * p.y, pose.y + s * p.x + c * p.y};
+    const grid::CellIndex q = map.cell_of(w.x, w.y);
+    bool clear = true;
+    for (int dy = -window; dy <= window && clear; ++dy)
+      for (int dx = -window; dx <= window && clear; ++dx) {
+        const grid::Cell cell = map.cell({q.x + dx, q.y + dy});
+        clear = (cell.logodds != 0 || cell.hits != 0) && cell.logodds <= free_logodds;
+      }
+    if (clear) out.push_back(w);
+  }
+  return out;
+}
+
+// A surface seen where a map saw through: its points grouped in cells of
+// 0.25 m (two returns of a 180-beam laser 14 m away still touch), and the
+// group spanning 1 m. A person standing (0.3-0.6 m) or a chair is shorter;
+// a wall, a partition or a shelf is not.
+constexpr double kSurfaceCell = 0.25;
+constexpr double kSurfaceSpan = 1.0;
+
+// How many of `points` belong to groups (points in 8-connected cells of
+// `cell` m) whose bounding box spans at least `span` m: a surface, not a
+// person standing or a chair moved.
+size_t points_in_surfaces(const std::vector<Point2D>& points, double cell, double span) {
+  std::map<std::pair<int64_t, int64_t>, int> group_of_cell;  // ordered: deterministic
+  std::vector<int> parent, group(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const std::pair<int64_t, int64_t> key{static_cast<int64_t>(std::floor(points[i].x / cell)),
+                                          static_cast<int64_t>(std::floor(points[i].y / cell))};
+    const auto [it, added] = group_of_cell.try_emplace(key, static_cast<int>(parent.size()));
+    if (added) parent.push_back(it->second);
+    group[i] = it->second;
+  }
+  auto root = [&](int a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  for (const auto& [key, g] : group_of_cell)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const auto it = group_of_cell.find({key.first + dx, key.second + dy});
+        if (it != group_of_cell.end()) parent[root(g)] = root(it->second);
+      }
+  struct Box {
+    double x0, y0, x1, y1;
+    size_t n = 0;
+  };
+  std::map<int, Box> boxes;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Point2D& p = points[i];
+    Box& b = boxes.try_emplace(root(group[i]), Box{p.x, p.y, p.x, p.y}).first->second;
+    b.x0 = std::min(b.x0, p.x);
+    b.y0 = std::min(b.y0, p.y);
+    b.x1 = std::max(b.x1, p.x);
+    b.y1 = std::max(b.y1, p.y);
+    ++b.n;
+  }
+  size_t n = 0;
+  for (const auto& [r, b] : boxes)
+    if (std::hypot(b.x1 - b.x0, b.y1 - b.y0) >= span) n += b.n;
   return n;
 }
 
@@ -329,8 +402,21 @@ TransitionModel::Match TransitionModel::match_from(const grid::OccupancyGrid& ma
   m.pose = matcher_.optimize(map, start, obs.points, &m.score, &m.information);
   // Only a match that explains min_points_explained of the points reaches
   // the ratio gate's count within the extent (sum_modes).
-  if (share_explained(m.score, obs.points.hit.size()) >= opt_.min_points_explained)
+  if (share_explained(m.score, obs.points.hit.size()) >= opt_.min_points_explained) {
     m.in_extent = points_in_extent(map, m.pose, obs.points.hit);
+    // The surfaces in free space, only for a match that passes the ratio
+    // gate too (sum_modes drops the others first): it costs a walk over the
+    // points' windows.
+    const double within = std::max<double>(static_cast<double>(m.in_extent), m.score.matched);
+    if (opt_.max_points_contradicted < 1.0 &&
+        static_cast<double>(m.score.matched) >= opt_.min_match_ratio * within)
+      m.contradicted = points_in_surfaces(
+          points_in_free_space(map, m.pose, obs.points.hit, matcher_.options().window,
+                               static_cast<grid::LogOdds>(std::lround(
+                                   std::log(opt_.free_probability / (1.0 - opt_.free_probability)) *
+                                   grid::kLogOddsScale))),
+          kSurfaceCell, kSurfaceSpan);
+  }
   return m;
 }
 
@@ -357,6 +443,8 @@ ExpectedLikelihood TransitionModel::sum_modes(const Search& search,
     // A matched point may lie up to the matcher's window outside the extent.
     const double within = std::max<double>(static_cast<double>(m.in_extent), m.score.matched);
     if (static_cast<double>(m.score.matched) < opt_.min_match_ratio * within) continue;
+    if (static_cast<double>(m.contradicted) > opt_.max_points_contradicted * static_cast<double>(n))
+      continue;
     const Eigen::Vector3d e = topology::difference(x, prior.mean);
     if (e.dot(S_inv * e) > opt_.gate) continue;
     const bool seen = std::any_of(modes.begin(), modes.end(), [&](const Mode& md) {

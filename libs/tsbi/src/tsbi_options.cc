@@ -8,6 +8,8 @@ void TsbiOptions::load(Config& cfg, const std::string& s) {
   log_eta = cfg.get_double(s, "log_eta", log_eta);
   min_match_ratio = cfg.get_double(s, "min_match_ratio", min_match_ratio);
   min_points_explained = cfg.get_double(s, "min_points_explained", min_points_explained);
+  max_points_contradicted = cfg.get_double(s, "max_points_contradicted", max_points_contradicted);
+  free_probability = cfg.get_double(s, "free_probability", free_probability);
   gate = cfg.get_double(s, "gate", gate);
   max_points = cfg.get_int(s, "max_points", max_points);
   evidence_cell = cfg.get_double(s, "evidence_cell", evidence_cell);
@@ -61,6 +63,9 @@ void TsbiOptions::load(Config& cfg, const std::string& s) {
   require(min_match_ratio > 0 && min_match_ratio <= 1, s, "min_match_ratio", "in (0, 1]");
   require(min_points_explained > 0 && min_points_explained <= 1, s, "min_points_explained",
           "in (0, 1]");
+  require(max_points_contradicted >= 0 && max_points_contradicted <= 1, s,
+          "max_points_contradicted", "in [0, 1]");
+  require(free_probability > 0 && free_probability < 0.5, s, "free_probability", "in (0, 0.5)");
   require(gate > 0, s, "gate", "> 0");
   require(max_points >= 10, s, "max_points", ">= 10");
   require(evidence_cell >= 0 && evidence_cell <= 100, s, "evidence_cell", "in [0, 100] (0: off)");

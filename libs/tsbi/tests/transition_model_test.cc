@@ -147,6 +147,59 @@ TEST(TransitionModel, AReturnAtAnAreasEdgeIsJudgedOnThePointsWithinItsExtent) {
   EXPECT_FALSE(c.at(17.0).candidate);
 }
 
+// A room mapped from all around, and seen again from the same path with
+// something standing on the floor the map saw open.
+struct RoomSeenAgain {
+  std::vector<testing_sim::Segment> room = testing_sim::office_world();
+  std::shared_ptr<const grid::OccupancyGrid> map =
+      map_of(room, Pose2D(), {{2, 2, 0}, {4, 4, 1.5}, {6, 8, 3.0}, {2, 8, -1.5}, {5, 3, 0.5},
+                              {3, 6, -0.5}, {6, 5, 2.5}});
+  Pose2D truth{3, 3, 0.2};
+  std::vector<Pose2D> path = {{2.0, 2.8, 0.2}, {2.5, 2.9, 0.2}, truth};
+  PoseGaussian prior{truth + Pose2D(0.1, -0.05, 0.02), diag(0.1, 0.05)};
+  ExpectedLikelihood seen(const std::vector<testing_sim::Segment>& world, double limit) const {
+    TsbiOptions o;
+    o.log_eta = 10.0;
+    o.max_points_contradicted = limit;
+    return TransitionModel(o, metric_slam::MatcherOptions{}, 30.0, area::AreaOptions{})
+        .expected_likelihood(*map, prior, observe(world, path));
+  }
+};
+
+// A partition standing there: the return matches the room's other walls,
+// but the partition's points land where the map saw through. That is
+// another room, not this one.
+TEST(TransitionModel, AMatchWhosePointsLieInTheMapsFreeSpaceIsNoMode) {
+  const RoomSeenAgain r;
+  auto partitioned = r.room;
+  partitioned.push_back({3.0, 5.0, 7.5, 5.0});
+  // Without the limit the other walls make a match, at the true pose.
+  const ExpectedLikelihood loose = r.seen(partitioned, 1.0);
+  ASSERT_TRUE(loose.candidate);
+  EXPECT_NEAR(loose.robot.mean.x, r.truth.x, 0.05);
+  EXPECT_NEAR(loose.robot.mean.y, r.truth.y, 0.05);
+  // With the default limit the partition rules the room out...
+  EXPECT_FALSE(r.seen(partitioned, TsbiOptions{}.max_points_contradicted).candidate);
+  // ... and the room as it was mapped is matched.
+  EXPECT_TRUE(r.seen(r.room, TsbiOptions{}.max_points_contradicted).candidate);
+}
+
+// People standing there instead: as many returns land on the open floor as
+// on the partition, but each person is a short surface (0.4 m), not a wall
+// the map saw through. The room is matched.
+TEST(TransitionModel, PeopleOnTheMapsOpenFloorDoNotRuleTheAreaOut) {
+  const RoomSeenAgain r;
+  auto crowded = r.room;
+  for (const double x : {3.2, 4.1, 5.0, 5.9, 6.8}) {  // five people, 0.9 m apart
+    crowded.push_back({x, 5.0, x + 0.4, 5.0});
+    crowded.push_back({x + 0.4, 5.0, x + 0.4, 5.3});
+  }
+  const ExpectedLikelihood e = r.seen(crowded, TsbiOptions{}.max_points_contradicted);
+  ASSERT_TRUE(e.candidate);
+  EXPECT_NEAR(e.robot.mean.x, r.truth.x, 0.05);
+  EXPECT_NEAR(e.robot.mean.y, r.truth.y, 0.05);
+}
+
 TEST(TransitionModel, NewAreaWinsWhenNoKnownMapExplainsTheObservations) {
   TwoKnownAreas s;
   const Pose2D truth(3, 3, 0.2);

@@ -226,6 +226,7 @@ class TransitionModel {
     metric_slam::MatchScore score;
     Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
     size_t in_extent = 0;  // points within the bounds of the cells the map observed
+    size_t contradicted = 0;  // points on surfaces in the map's clear free space
   };
   Search prepare_search(const grid::OccupancyGrid& map, const MatchField& field,
                         const topology::PoseGaussian& prior, const Observations& obs) const;

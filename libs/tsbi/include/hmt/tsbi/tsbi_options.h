@@ -25,6 +25,13 @@ struct TsbiOptions {
   // ... and at least this fraction of all the points: a return must overlap
   // the area for most of what it sees.
   double min_points_explained = 0.5;
+  // ... and at most this fraction of the points may lie on a surface (a
+  // group of them spanning 1 m) where the map saw clear free space (their
+  // cell and every cell within the matcher's window known and at most
+  // free_probability occupied): where the map saw through, a right match
+  // sees no wall; a person standing there is no surface. 1: no such limit.
+  double max_points_contradicted = 0.08;
+  double free_probability = 0.35;
   // ... and lies inside the prior: squared Mahalanobis distance to the
   // prior mean below this (chi-square, 3 dof: 16.27 is the 99.9% quantile).
   double gate = 16.27;
