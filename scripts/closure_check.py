@@ -57,6 +57,7 @@ import numpy as np
 
 sys.path.insert(0, __file__.rsplit("/", 1)[0])
 from ate import load_poses  # noqa: E402
+from relation_error import relative, wrap  # noqa: E402
 
 SCRIPT = "closure_check.py"
 
@@ -127,17 +128,6 @@ def compose(a, b):
     """Pose a (x, y, theta) composed with pose b."""
     c, s = math.cos(a[2]), math.sin(a[2])
     return (a[0] + c * b[0] - s * b[1], a[1] + s * b[0] + c * b[1], a[2] + b[2])
-
-
-def between(a, b):
-    """Pose b seen from pose a."""
-    c, s = math.cos(a[2]), math.sin(a[2])
-    dx, dy = b[0] - a[0], b[1] - a[1]
-    return (c * dx + s * dy, -s * dx + c * dy, b[2] - a[2])
-
-
-def angle(a):
-    return (a + math.pi) % (2 * math.pi) - math.pi
 
 
 class Reference:
@@ -226,10 +216,10 @@ def judge(line, placed, ref, scans, near, tolerance, revisit):
             continue
         dist, pose, p = found
         d["nearest_keyframe_m"] = dist
-        truth = compose(pose, between(p, now))
+        truth = compose(pose, relative(p, now))
         mode = (float(r["x"]), float(r["y"]), float(r["theta"]))
         d["mode_error_m"] = math.hypot(mode[0] - truth[0], mode[1] - truth[1])
-        d["mode_error_deg"] = abs(math.degrees(angle(mode[2] - truth[2])))
+        d["mode_error_deg"] = abs(math.degrees(wrap(mode[2] - truth[2])))
         if d["mode_error_m"] <= tolerance:
             d["verdict"] = "right"
         else:
