@@ -7,6 +7,10 @@
 
 namespace hmt::grid {
 
+LogOdds scaled_logit(double p) {
+  return static_cast<LogOdds>(std::lround(std::log(p / (1.0 - p)) * kLogOddsScale));
+}
+
 OccupancyGrid::OccupancyGrid(double resolution)
     : resolution_(resolution), inv_resolution_(1.0 / resolution) {}
 

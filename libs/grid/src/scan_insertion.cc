@@ -9,10 +9,6 @@
 namespace hmt::grid {
 namespace {
 
-LogOdds scaled_logit(double p) {
-  return static_cast<LogOdds>(std::lround(std::log(p / (1.0 - p)) * kLogOddsScale));
-}
-
 // Which cells a scan has already updated, over the scan's bounding box: one
 // bit per cell for hits and one for free-space updates, so every cell gets
 // at most one update per scan.

@@ -87,9 +87,7 @@ void MatcherOptions::load(Config& cfg, const std::string& s) {
 }
 
 ScanMatcher::ScanMatcher(const MatcherOptions& opt) : opt_(opt) {
-  const double p = opt.occupied_probability;
-  occ_threshold_ = static_cast<grid::LogOdds>(
-      std::lround(std::log(p / (1 - p)) * grid::kLogOddsScale));
+  occ_threshold_ = grid::scaled_logit(opt.occupied_probability);
   inv_2sigma2_ = 1.0 / (2.0 * opt.sigma * opt.sigma);
 }
 

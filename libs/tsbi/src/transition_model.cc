@@ -163,6 +163,7 @@ TransitionModel::TransitionModel(const TsbiOptions& options,
                                  std::shared_ptr<WorkerPool> pool)
     : opt_(options),
       matcher_(matcher),
+      free_threshold_(grid::scaled_logit(options.free_probability)),
       gain_(likelihood_gain),
       area_(area),
       pool_(std::move(pool)) {}
@@ -407,17 +408,18 @@ TransitionModel::Match TransitionModel::match_from(const grid::OccupancyGrid& ma
     // The surfaces in free space, only for a match that passes the ratio
     // gate too (sum_modes drops the others first): it costs a walk over the
     // points' windows.
-    const double within = std::max<double>(static_cast<double>(m.in_extent), m.score.matched);
-    if (opt_.max_points_contradicted < 1.0 &&
-        static_cast<double>(m.score.matched) >= opt_.min_match_ratio * within)
+    if (opt_.max_points_contradicted < 1.0 && explains_extent(m))
       m.contradicted = points_in_surfaces(
           points_in_free_space(map, m.pose, obs.points.hit, matcher_.options().window,
-                               static_cast<grid::LogOdds>(std::lround(
-                                   std::log(opt_.free_probability / (1.0 - opt_.free_probability)) *
-                                   grid::kLogOddsScale))),
+                               free_threshold_),
           kSurfaceCell, kSurfaceSpan);
   }
   return m;
+}
+
+bool TransitionModel::explains_extent(const Match& m) const {
+  const double within = std::max<double>(static_cast<double>(m.in_extent), m.score.matched);
+  return static_cast<double>(m.score.matched) >= opt_.min_match_ratio * within;
 }
 
 ExpectedLikelihood TransitionModel::sum_modes(const Search& search,
@@ -440,9 +442,7 @@ ExpectedLikelihood TransitionModel::sum_modes(const Search& search,
     const Pose2D& x = m.pose;
     const double ratio = share_explained(m.score, n);
     if (ratio < opt_.min_points_explained) continue;
-    // A matched point may lie up to the matcher's window outside the extent.
-    const double within = std::max<double>(static_cast<double>(m.in_extent), m.score.matched);
-    if (static_cast<double>(m.score.matched) < opt_.min_match_ratio * within) continue;
+    if (!explains_extent(m)) continue;
     if (static_cast<double>(m.contradicted) > opt_.max_points_contradicted * static_cast<double>(n))
       continue;
     const Eigen::Vector3d e = topology::difference(x, prior.mean);

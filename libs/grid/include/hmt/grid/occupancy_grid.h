@@ -59,6 +59,9 @@ struct Cell {
   int8_t hy = 0;
 };
 constexpr double kLogOddsScale = 20.0;
+// A probability's log-odds in those steps, rounded: the thresholds that
+// insertion, the matcher and TSBI compare cells against.
+LogOdds scaled_logit(double p);
 constexpr double kHitScale = 254.0;
 
 struct Tile {

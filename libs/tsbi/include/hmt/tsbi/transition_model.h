@@ -236,6 +236,10 @@ class TransitionModel {
                        const Observations& obs) const;
   Match match_from(const grid::OccupancyGrid& map, const Pose2D& start,
                    const Observations& obs) const;
+  // The ratio gate: the match explains min_match_ratio of its points within
+  // the known area's extent (a matched point may lie up to the matcher's
+  // window outside it).
+  bool explains_extent(const Match& m) const;
   ExpectedLikelihood sum_modes(const Search& search, const std::vector<Match>& matches,
                                const Observations& obs) const;
   ExpectedLikelihood expected_likelihood(const grid::OccupancyGrid& map,
@@ -260,6 +264,7 @@ class TransitionModel {
 
   TsbiOptions opt_;
   metric_slam::ScanMatcher matcher_;
+  grid::LogOdds free_threshold_;  // scaled_logit(free_probability)
   double gain_;
   area::AreaOptions area_;
   std::shared_ptr<WorkerPool> pool_;
