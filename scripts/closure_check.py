@@ -10,7 +10,8 @@ hypothesis at the end: summary.json's best_hypothesis, then back through
 tsbi_events.csv's `child` column) and judges each one
 against the reference, using where the areas' keyframes were taken
 (topology.json's keyframe_poses: each keyframe's time and pose in its
-area's frame).
+area's frame; keyframe_steps: its log step, by which the reference is
+read when it holds one pose per scan).
 
 A closure into known area A (its best mode: the robot in A's frame) is
   right        the mode lies within --tolerance of where the reference puts
@@ -23,8 +24,11 @@ A closure into known area A (its best mode: the robot in A's frame) is
                --near of the robot: the robot was not in A at all (a
                look-alike area);
   unknown      A had no keyframe before the event, or the reference has no
-               pose at a time needed (a log whose timestamps repeat: csail's
-               are rounded to 10 s, the infinite corridor's broken).
+               pose at a time needed. Times are needed only where steps are
+               not known (an output of an older hmt-slam, a reference with
+               other poses than the log's scans) and then fail on logs whose
+               timestamps repeat: csail's are rounded to 10 s, the infinite
+               corridor's broken.
 A new area is
   new          no older area had a keyframe within --revisit of the robot;
   revisit      one did: that place is now in two areas' maps. Harmless
@@ -32,7 +36,10 @@ A new area is
                doorway of a room mapped before); in a broken map, a loop
                left open there.
 Only the keyframes taken before the robot entered the area it left at the
-event count: later ones may sit where a wrong closure put them.
+event count: later ones may sit where a wrong closure put them. By step, a
+keyframe of the entering step itself counts too (it was taken, in the area
+then left, before that event was decided); by time it does not (another
+scan may share the time).
 
 Usage: closure_check.py OUT_DIR REFERENCE [--near M] [--tolerance M]
                         [--revisit M] [--json]
@@ -169,22 +176,28 @@ class Reference:
         return self.at([time])[0]
 
 
-def placed_keyframes(areas, ref):
-    """{area: [(time, pose in the area's frame, reference pose)]} for the
-    keyframes the reference can place."""
+def placed_keyframes(areas, ref, scans):
+    """{area: [(time, step, pose in the area's frame, reference pose)]} for
+    the keyframes the reference can place: by step where known, else by
+    time."""
     out = {}
     for aid, kfs in areas.items():
-        at = ref.at([k[0] for k in kfs])
-        out[aid] = [(k[0], k[1:4], p) for k, p in zip(kfs, at) if p is not None]
+        placed = []
+        for time, x, y, theta, step in kfs:
+            p = ref.at_step(step, time, scans) if step is not None else ref.at([time])[0]
+            if p is not None:
+                placed.append((time, step, (x, y, theta), p))
+        out[aid] = placed
     return out
 
 
-def nearest_before(placed, t, now):
+def nearest_before(placed, t, step, now):
     """(distance, pose in the area, reference pose) of the keyframe nearest
-    to `now` among those taken before time t, or None."""
+    to `now` among those taken up to step `step` (before time t, for a
+    keyframe whose step is not known), or None."""
     best = None
-    for time, pose, p in placed:
-        if time < t:
+    for time, kf_step, pose, p in placed:
+        if (kf_step <= step) if kf_step is not None else (time < t):
             dist = math.hypot(p[0] - now[0], p[1] - now[1])
             if best is None or dist < best[0]:
                 best = (dist, pose, p)
@@ -193,24 +206,25 @@ def nearest_before(placed, t, now):
 
 def judge(line, placed, ref, scans, near, tolerance, revisit):
     out = []
-    entered = -math.inf  # when the robot entered the area it leaves at a decision
+    # When (time, step) the robot entered the area it leaves at a decision.
+    entered = (-math.inf, -math.inf)
     for r in line:
         t = float(r["time"])
         d = {"step": int(r["step"]), "time": t, "from_area": int(r["from_area"]),
              "outcome": r["outcome"], "area": int(r["area"]) if r["area"].strip() else None,
              "probability": float(r["probability"])}
         out.append(d)
-        before, entered = entered, t
+        before, entered = entered, (t, d["step"])
         now = ref.at_step(d["step"], t, scans)
         if now is None:
             d["verdict"] = "unknown"
             continue
         if r["outcome"] == "new":
-            found = [n for n in (nearest_before(kfs, before, now) for kfs in placed.values()) if n]
+            found = [n for n in (nearest_before(kfs, *before, now) for kfs in placed.values()) if n]
             d["nearest_keyframe_m"] = min(n[0] for n in found) if found else None
             d["verdict"] = "revisit" if found and d["nearest_keyframe_m"] <= revisit else "new"
             continue
-        found = nearest_before(placed.get(d["area"], []), before, now)
+        found = nearest_before(placed.get(d["area"], []), *before, now)
         if found is None:
             d["verdict"] = "unknown"
             continue
@@ -243,11 +257,21 @@ def load_areas(path):
         if "keyframe_poses" not in a:
             fail(f"{path}: area {a.get('id')} has no keyframe_poses (an output of an older "
                  f"hmt-slam)")
+        poses = a["keyframe_poses"]
+        # Steps: none from an older hmt-slam; null where a resumed map's
+        # older file did not hold them.
+        steps = a.get("keyframe_steps", [None] * len(poses))
+        if not isinstance(steps, list) or len(steps) != len(poses):
+            fail(f"{path}: area {a.get('id')}: keyframe_steps does not hold one step per "
+                 f"keyframe pose")
         kfs = []
-        for k in a["keyframe_poses"]:
+        for k, step in zip(poses, steps):
             if len(k) != 4 or not all(isinstance(v, (int, float)) and math.isfinite(v) for v in k):
                 fail(f"{path}: area {a.get('id')}: a keyframe pose is not [time, x, y, theta]")
-            kfs.append(tuple(float(v) for v in k))
+            if step is not None and (not isinstance(step, int) or isinstance(step, bool)
+                                     or step < 0):
+                fail(f"{path}: area {a.get('id')}: a keyframe step is '{step}', not a count")
+            kfs.append(tuple(float(v) for v in k) + (step,))
         areas[int(a["id"])] = kfs
     return areas
 
@@ -286,8 +310,8 @@ def main():
         fail(str(e))
     line = final_line(events, best_hypothesis(os.path.join(a.out_dir, "summary.json")))
     scans = count_scans(os.path.join(a.out_dir, "trajectory.tum"))
-    decisions = judge(line, placed_keyframes(areas, ref), ref, scans, a.near, a.tolerance,
-                      a.revisit)
+    decisions = judge(line, placed_keyframes(areas, ref, scans), ref, scans, a.near,
+                      a.tolerance, a.revisit)
     counts = {}
     for d in decisions:
         counts[d["verdict"]] = counts.get(d["verdict"], 0) + 1

@@ -84,7 +84,9 @@ class ClosureCheck(unittest.TestCase):
                 x, y, th = truth(s)
                 f.write(f"{time_of(s):.3f} {x:.4f} {y:.4f} {th:.6f}\n")
 
-    def write_all(self, keyframe_key="keyframe_poses"):
+    def write_all(self, keyframe_key="keyframe_poses", steps=None):
+        """steps: {area: keyframe_steps}; None writes none (an older
+        hmt-slam's output)."""
         with open(os.path.join(self.out, "tsbi_events.csv"), "w", newline="") as f:
             w = csv.writer(f)
             w.writerow(EVENT_COLUMNS)
@@ -94,6 +96,9 @@ class ClosureCheck(unittest.TestCase):
         topo = {"root": 1, "arcs": [],
                 "areas": [{"id": a, "keyframes": len(k), keyframe_key: k}
                           for a, k in self.areas.items()]}
+        for area in topo["areas"]:
+            if steps is not None:
+                area["keyframe_steps"] = steps[area["id"]]
         with open(os.path.join(self.out, "topology.json"), "w") as f:
             json.dump(topo, f)
         with open(os.path.join(self.out, "trajectory.tum"), "w") as f:
@@ -160,6 +165,47 @@ class ClosureCheck(unittest.TestCase):
         j = self.judged()
         self.assertEqual([d["verdict"] for d in j["decisions"]], ["new", "new", "unknown",
                                                                    "unknown"])
+
+    def true_steps(self):
+        """Each keyframe's step: its time less T0."""
+        return {a: [round(k[0] - T0) for k in kfs] for a, kfs in self.areas.items()}
+
+    def test_keyframe_steps_place_keyframes_the_times_cannot(self):
+        self.write_ref(lambda s: T0 + 10 * round(s / 10))
+        self.write_all(steps=self.true_steps())
+        j = self.judged()
+        self.assertEqual([d["verdict"] for d in j["decisions"]], ["new", "new", "right",
+                                                                   "elsewhere"])
+        # Only area 3's keyframes up to step 81 count: not the one at 104.
+        self.assertAlmostEqual(j["decisions"][3]["nearest_keyframe_m"], 12.0, places=6)
+        # A step not known (null) falls back to the keyframe's time.
+        steps = self.true_steps()
+        steps[3] = [None] * len(steps[3])
+        self.write_all(steps=steps)
+        self.assertEqual([d["verdict"] for d in self.judged()["decisions"]],
+                         ["new", "new", "right", "unknown"])
+
+    def test_a_keyframe_of_the_entering_step_counts_by_step_not_by_time(self):
+        # Area 3's keyframe of step 81, taken there before the event of step
+        # 81 took the robot into area 2: 9.5 m from the robot at step 100.
+        self.areas[3].insert(5, keyframe(3, 81))
+        self.write_all(steps=self.true_steps())
+        self.assertAlmostEqual(self.judged()["decisions"][3]["nearest_keyframe_m"], 9.5, places=6)
+        # Its time is the event's: by time it does not count.
+        self.write_all()
+        self.assertAlmostEqual(self.judged()["decisions"][3]["nearest_keyframe_m"], 12.0,
+                               places=6)
+
+    def test_malformed_keyframe_steps_are_errors(self):
+        steps = self.true_steps()
+        steps[2] = steps[2][1:]
+        self.write_all(steps=steps)
+        self.expect_error("area 2: keyframe_steps does not hold one step per keyframe pose")
+        for bad in (-3, 2.5, True, "7"):
+            steps = self.true_steps()
+            steps[1][2] = bad
+            self.write_all(steps=steps)
+            self.expect_error("area 1: a keyframe step is")
 
     def test_the_dead_branch_is_judged_when_its_hypothesis_is_the_best(self):
         self.best = 6

@@ -81,6 +81,18 @@ inline void expect_loop_closed_into_area_1(const std::string& out, int from_area
       ASSERT_EQ(k.size(), 4u);
       for (const auto& v : k) EXPECT_TRUE(std::isfinite(v.get<double>()));
     }
+    // Their log steps: known in a run from the start, ascending (an area
+    // gains keyframes as the robot drives through it), none before the area
+    // was first entered.
+    const auto& ks = a["keyframe_steps"];
+    ASSERT_EQ(ks.size(), kp.size()) << "area " << a["id"];
+    uint64_t last = a["created_step"].get<uint64_t>();
+    for (size_t k = 0; k < ks.size(); ++k) {
+      ASSERT_TRUE(ks[k].is_number_unsigned()) << "area " << a["id"] << " keyframe " << k;
+      const uint64_t step = ks[k].get<uint64_t>();
+      EXPECT_TRUE(k == 0 ? step >= last : step > last) << "area " << a["id"] << " keyframe " << k;
+      last = step;
+    }
   }
 
   bool settled = false;

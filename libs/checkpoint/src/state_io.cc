@@ -274,7 +274,7 @@ void serialize(A& ar, OccupancyGrid& g) {
 namespace hmt::topology {
 template <class A>
 void serialize(A& ar, Keyframe& k) {
-  ar(k.pose, k.scan);
+  ar(k.pose, k.scan, k.step);
 }
 template <class A>
 void serialize(A& ar, ReferenceFrame& f) {

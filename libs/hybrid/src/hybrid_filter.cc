@@ -158,7 +158,7 @@ std::optional<area::Keyframe> HybridFilter::keyframe_due(const LogStep& step) {
   for (Hypothesis& hh : hyps_) {
     const Pose2D at = hh.filter.best().path.back();
     if (!hh.map.has_keyframe_near(hh.current_area(), at, kd, ka))
-      hh.map.add_keyframe(hh.current_area(), {at, step.scan});
+      hh.map.add_keyframe(hh.current_area(), {at, step.scan, step_});
   }
   area::Keyframe kf{area::PoseGaussian(pose), step.scan};
   const area::PlacementOptions& po = opt_.area.placement;
@@ -694,7 +694,7 @@ topology::Session HybridFilter::session(const area::OnlinePartitioner& partition
   }
   for (int id : partitioner.window()) {
     const KeyframeRecord& kf = keyframes_[static_cast<size_t>(id)];
-    s.area_graph.push_back({kf.pose, *kf.scan});
+    s.area_graph.push_back({kf.pose, *kf.scan, kf.step});
   }
   return s;
 }

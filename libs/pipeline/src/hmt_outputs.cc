@@ -133,10 +133,17 @@ void write_topology_json(const std::string& path, const topology::HmtMap& map,
     // reference trajectory, where the area lies (scripts/closure_check.py).
     // Times to the microsecond, as the CSVs write them: a ROS bag's
     // nanosecond clock and a CARMEN log's seconds then give the same bytes.
+    // Their log steps too (null where not known: a map resumed from an
+    // older map file): a log whose timestamps repeat or are rounded (csail's
+    // to 10 s) still says, by step, where each keyframe was taken.
     ja["keyframe_poses"] = nlohmann::json::array();
-    for (const topology::Keyframe& k : a.keyframes)
+    ja["keyframe_steps"] = nlohmann::json::array();
+    for (const topology::Keyframe& k : a.keyframes) {
       ja["keyframe_poses"].push_back(
           {std::round(k.scan.timestamp * 1e6) / 1e6, k.pose.x, k.pose.y, k.pose.theta});
+      ja["keyframe_steps"].push_back(k.step == topology::kUnknownStep ? nlohmann::json(nullptr)
+                                                                      : nlohmann::json(k.step));
+    }
     ja["parent"] = a.frame.parent == topology::kNoArea ? nlohmann::json(nullptr)
                                                        : nlohmann::json(a.frame.parent);
     ja["created_step"] = a.frame.created_step;

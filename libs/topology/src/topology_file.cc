@@ -212,6 +212,7 @@ void write_keyframes(Writer& w, const std::vector<Keyframe>& keyframes, const ch
                                   ": a keyframe's scan has different numbers of "
                                   "ranges and validity flags");
     w.pose(k.pose);
+    w.u64(k.step);
     write_scan(w, k.scan);
   }
 }
@@ -418,12 +419,15 @@ LaserScan read_scan(Reader& r) {
 }
 
 // A list written by write_keyframes; `owner` ("area 3", "area graph")
-// names it in errors.
-std::vector<Keyframe> read_keyframes(Reader& r, const char* list, const std::string& owner) {
-  std::vector<Keyframe> out(r.count(24 + 8 + 12 + 24 + 4, list));
+// names it in errors. Files older than the keyframes' steps (`with_steps`
+// false) give kUnknownStep.
+std::vector<Keyframe> read_keyframes(Reader& r, const char* list, const std::string& owner,
+                                     bool with_steps) {
+  std::vector<Keyframe> out(r.count(24 + (with_steps ? 8 : 0) + 8 + 12 + 24 + 4, list));
   for (Keyframe& kf : out) {
     kf.pose = r.pose("keyframe pose");
     if (!finite(kf.pose)) r.fail(owner + ": non-finite keyframe pose");
+    if (with_steps) kf.step = r.u64("keyframe step");
     kf.scan = read_scan(r);
   }
   return out;
@@ -458,8 +462,10 @@ Arc read_arc(Reader& r, const std::string& where) {
   return arc;
 }
 
+// `keyframe_steps`: the file's keyframes carry their steps (topology format
+// 2, session format 5 and later).
 TopologySnapshot decode_payload(
-    Reader& r,
+    Reader& r, bool keyframe_steps,
     const std::vector<std::shared_ptr<const grid::OccupancyGrid>>* grids = nullptr) {
   TopologySnapshot snap;
   HmtMap& map = snap.map;
@@ -488,7 +494,7 @@ TopologySnapshot decode_payload(
       r.fail("area " + std::to_string(id) + ": non-finite frame origin");
     frames.emplace_back(id, f);
     Pending p;
-    p.keyframes = read_keyframes(r, "keyframes", "area " + std::to_string(id));
+    p.keyframes = read_keyframes(r, "keyframes", "area " + std::to_string(id), keyframe_steps);
     if (grids) {
       const uint32_t g = r.u32("map index");
       if (g != kNoGrid && g >= grids->size())
@@ -684,10 +690,12 @@ std::string encode_topology(
 
 TopologySnapshot decode_topology(const std::string& bytes,
                                  const std::string& origin) {
-  const std::string payload = unwrap(bytes, kTopologyMagic, kTopologyFormatVersion,
-                                     "topology file '" + origin + "'", "an HMT topology file");
+  uint32_t version = 0;
+  const std::string payload =
+      unwrap(bytes, kTopologyMagic, kTopologyFormatVersion, "topology file '" + origin + "'",
+             "an HMT topology file", kOldestTopologyFormatVersion, &version);
   Reader r(payload, origin);
-  TopologySnapshot snap = decode_payload(r);
+  TopologySnapshot snap = decode_payload(r, version >= 2);
   if (!r.at_end()) r.fail("unexpected data after the hypotheses");
   return snap;
 }
@@ -796,7 +804,7 @@ Session decode_session(const std::string& bytes, const std::string& origin) {
     h.robot = r.pose("robot pose");
     h.aam_from_area = r.pose("area abstraction frame");
     if (!finite(h.robot) || !finite(h.aam_from_area)) r.fail("a pose is not finite");
-    TopologySnapshot t = decode_payload(r, &grids);
+    TopologySnapshot t = decode_payload(r, version >= 5, &grids);
     if (t.hypotheses.size() != 1) r.fail("a hypothesis without exactly one path");
     h.map = std::move(t.map);
     h.topo = std::move(t.hypotheses[0]);
@@ -805,7 +813,8 @@ Session decode_session(const std::string& bytes, const std::string& origin) {
     if (version >= 3) h.pending_closures = read_closures(r, h);
     s.hypotheses.push_back(std::move(h));
   }
-  if (version >= 4) s.area_graph = read_keyframes(r, "area graph keyframes", "area graph");
+  if (version >= 4)
+    s.area_graph = read_keyframes(r, "area graph keyframes", "area graph", version >= 5);
   if (!r.at_end()) r.fail("unexpected data after the " + std::string(version >= 4 ? "area graph" : "hypotheses"));
   return s;
 }

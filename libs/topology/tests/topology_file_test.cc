@@ -77,6 +77,7 @@ Keyframe random_keyframe(Random& rng, int beams) {
   }
   k.scan.ranges[0] = std::numeric_limits<float>::quiet_NaN();
   k.scan.ranges[1] = std::numeric_limits<float>::infinity();
+  k.step = static_cast<uint64_t>(rng.uniform(0, 1e6));
   return k;
 }
 
@@ -103,7 +104,9 @@ Fixture sample_topology() {
   m.add_area(7, {0, Pose2D(-3.0, 1.0, 3.1), 400, 140.0});
   for (int i = 0; i < 3; ++i) m.add_keyframe(0, random_keyframe(rng, 181));
   m.add_keyframe(1, random_keyframe(rng, 361));
-  m.add_keyframe(7, random_keyframe(rng, 2));
+  Keyframe unknown = random_keyframe(rng, 2);
+  unknown.step = kUnknownStep;  // as read from an older file
+  m.add_keyframe(7, unknown);
   grid::OccupancyGrid g0 = random_grid(0.05, rng);
   grid::OccupancyGrid g1 = g0;  // shares g0's tiles in memory ...
   for (int i = 0; i < 50; ++i)  // ... except where it is changed
@@ -189,6 +192,7 @@ void expect_same_keyframes(const std::vector<Keyframe>& a, const std::vector<Key
     const LaserScan& sa = a[k].scan;
     const LaserScan& sb = b[k].scan;
     expect_same_pose(a[k].pose, b[k].pose);
+    EXPECT_EQ(a[k].step, b[k].step);
     EXPECT_EQ(bits(sa.timestamp), bits(sb.timestamp));
     EXPECT_EQ(bits(sa.angle_min), bits(sb.angle_min));
     EXPECT_EQ(bits(sa.angle_increment), bits(sb.angle_increment));
@@ -247,6 +251,26 @@ void put_u64(std::string& s, uint64_t v) {
     s.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
 }
 void put_f64(std::string& s, double v) { put_u64(s, bits(v)); }
+void put_f32(std::string& s, float v) {
+  uint32_t b;
+  std::memcpy(&b, &v, 4);
+  put_u32(s, b);
+}
+
+// A keyframe in the documented layout: pose (1, 2, 0.5), step 42 when
+// `with_step` (topology format 2, session format 5), a two-beam scan.
+void append_keyframe(std::string& s, bool with_step) {
+  for (double v : {1.0, 2.0, 0.5}) put_f64(s, v);
+  if (with_step) put_u64(s, 42);
+  put_f64(s, 3.0);  // timestamp
+  for (float v : {-1.5f, 3.0f, 10.0f}) put_f32(s, v);  // angle_min, increment, max_range
+  for (int i = 0; i < 3; ++i) put_f64(s, 0.0);          // sensor pose
+  put_u32(s, 2);
+  put_f32(s, 1.0f);
+  put_f32(s, 2.0f);
+  s.push_back(1);
+  s.push_back(1);
+}
 uint32_t crc(const std::string& s, size_t n) {
   return static_cast<uint32_t>(crc32(
       0L, reinterpret_cast<const Bytef*>(s.data()), static_cast<uInt>(n)));
@@ -343,6 +367,37 @@ TEST(TopologyFile, EmptyMapRoundTrips) {
   EXPECT_TRUE(got.hypotheses.empty());
 }
 
+TEST(TopologyFile, ReadsVersion1WithoutKeyframeSteps) {
+  auto one_keyframe = [](bool with_step) {
+    std::string s;
+    put_u32(s, 1);            // one area
+    put_u32(s, 0);            // id
+    put_u32(s, 0xffffffffu);  // no parent
+    for (int i = 0; i < 3; ++i) put_f64(s, 0.0);
+    put_u64(s, 0);
+    put_f64(s, 0.0);
+    put_u32(s, 1);  // one keyframe
+    append_keyframe(s, with_step);
+    s.push_back(0);  // no map
+    put_u32(s, 0);   // no arcs
+    put_u32(s, 0);   // no hypotheses
+    return s;
+  };
+  const TopologySnapshot v1 = decode_topology(wrap(one_keyframe(false), kTopologyMagic, 1), "v1");
+  const TopologySnapshot v2 = decode_topology(wrap(one_keyframe(true), kTopologyMagic, 2), "v2");
+  for (const TopologySnapshot* t : {&v1, &v2}) {
+    ASSERT_EQ(t->map.area(0).keyframes.size(), 1u);
+    EXPECT_EQ(t->map.area(0).keyframes[0].pose.theta, 0.5);
+    EXPECT_EQ(t->map.area(0).keyframes[0].scan.timestamp, 3.0);
+  }
+  EXPECT_EQ(v1.map.area(0).keyframes[0].step, kUnknownStep);
+  EXPECT_EQ(v2.map.area(0).keyframes[0].step, 42u);
+  // A version 1 payload labelled version 2 is refused: its bytes, shifted
+  // by the step, give a beam count the data cannot hold.
+  expect_input_error(wrap(one_keyframe(false), kTopologyMagic, 2),
+                     "count of beams (1073741824) exceeds the remaining data");
+}
+
 TEST(TopologyFile, OnlyAllocatedTilesAreStoredAndDeflated) {
   // Two tiles 3000 tiles apart, plus a block of uniform free space: the
   // file holds the tiles, not their bounding box, and deflates the rest.
@@ -396,8 +451,8 @@ TEST(TopologyFile, CorruptFilesAreInputErrors) {
   expect_input_error("PK\x03\x04 something else entirely, long enough",
                      "bad magic");
   s = good;
-  s[8] = 2;  // version 2
-  expect_input_error(s, "format version 2");
+  s[8] = 3;  // version 3
+  expect_input_error(s, "format version 3; this build reads version 1 to 2");
   s = good;
   s[20] ^= 0x10;  // the payload size
   expect_input_error(s, "header checksum");
@@ -727,8 +782,23 @@ TEST(SessionFile, ReadsEarlierVersionsWithoutClosuresOrGraph) {
   // version 4 needs the graph's count too...
   expect_session_error(wrap(p3, kSessionMagic, 4), "payload ends inside area graph keyframes");
   // ... and a version this build does not know is refused, naming both.
-  expect_session_error(wrap(p3 + std::string(4, '\0'), kSessionMagic, 5),
-                       "format version 5; this build reads version 2 to 4");
+  expect_session_error(wrap(p3 + std::string(4, '\0'), kSessionMagic, 6),
+                       "format version 6; this build reads version 2 to 5");
+  // Keyframes carry their steps from version 5 on; a version 4 file's are
+  // not known.
+  std::string p4 = p3;
+  put_u32(p4, 1);  // one area graph keyframe
+  std::string p5 = p4;
+  append_keyframe(p4, false);
+  append_keyframe(p5, true);
+  const Session v4 = decode_session(wrap(p4, kSessionMagic, 4), "v4.bin");
+  ASSERT_EQ(v4.area_graph.size(), 1u);
+  EXPECT_EQ(v4.area_graph[0].step, kUnknownStep);
+  EXPECT_EQ(v4.area_graph[0].pose.y, 2.0);
+  const Session v5 = decode_session(wrap(p5, kSessionMagic, 5), "v5.bin");
+  ASSERT_EQ(v5.area_graph.size(), 1u);
+  EXPECT_EQ(v5.area_graph[0].step, 42u);
+  EXPECT_EQ(v5.area_graph[0].scan.ranges, (std::vector<float>{1.0f, 2.0f}));
 }
 
 TEST(SessionFile, BadAreaGraphIsAnInputError) {

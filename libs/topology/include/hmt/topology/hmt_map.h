@@ -66,11 +66,14 @@ namespace hmt::topology {
 using AreaId = uint32_t;
 constexpr AreaId kNoArea = std::numeric_limits<AreaId>::max();
 
-// A keyframe kept with its area: the robot pose in the area's frame and the
-// scan taken there.
+// A keyframe kept with its area: the robot pose in the area's frame, the
+// scan taken there, and the log step it was taken at (kUnknownStep when not
+// known: a keyframe read from a map file older than the step's field).
+constexpr uint64_t kUnknownStep = std::numeric_limits<uint64_t>::max();
 struct Keyframe {
   Pose2D pose;
   LaserScan scan;
+  uint64_t step = kUnknownStep;
 };
 
 // How an area's local frame was defined. When the robot enters a new area,

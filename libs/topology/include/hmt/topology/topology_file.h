@@ -3,7 +3,7 @@
 // hypotheses, in one versioned binary file that loads back exactly (every
 // double, float and cell bit for bit).
 //
-// File layout, version 1 (all integers little-endian, IEEE-754 floats
+// File layout, version 2 (all integers little-endian, IEEE-754 floats
 // stored as their bit patterns, little-endian):
 //
 //   header, 40 bytes
@@ -21,7 +21,7 @@
 //       u32 id; u32 frame.parent (0xffffffff = none); f64 x, y, theta of
 //       frame.origin_in_parent; u64 created_step; f64 created_time
 //       u32 keyframe count, then per keyframe: f64 x, y, theta;
-//         f64 timestamp; f32 angle_min, angle_increment, max_range;
+//         u64 step (0xffffffffffffffff = not known); f64 timestamp; f32 angle_min, angle_increment, max_range;
 //         f64 sensor x, y, theta; u32 beams; f32 ranges[beams];
 //         u8 valid[beams]
 //       u8 has_map; if 1: f64 resolution; u32 tile count; then per
@@ -54,7 +54,10 @@
 
 namespace hmt::topology {
 
-constexpr uint32_t kTopologyFormatVersion = 1;
+// Version 1 files (keyframes without their steps) are read too: every
+// keyframe's step is then kUnknownStep.
+constexpr uint32_t kTopologyFormatVersion = 2;
+constexpr uint32_t kOldestTopologyFormatVersion = 1;
 constexpr size_t kTopologyHeaderSize = 40;
 inline constexpr char kTopologyMagic[8] = {'H', 'M', 'T', 'T',
                                            'O', 'P', 'O', '\x1a'};
@@ -83,7 +86,7 @@ TopologySnapshot load_topology(const std::string& path);
 // The HMT map file of a run (hmt_map.bin): every live hypothesis with its
 // own map and path, and what is needed to continue the run from where it
 // stopped (hmt-slam resume). Same header layout as above, with magic
-// "HMTSESS\x1a" and its own version; payload (version 4):
+// "HMTSESS\x1a" and its own version; payload (version 5):
 //   u64 steps processed; f64 timestamp of the last one;
 //   u32 map count, then each distinct area map once, as a map is stored
 //     above (f64 resolution; u32 tile count; tiles): hypotheses share the
@@ -103,13 +106,14 @@ TopologySnapshot load_topology(const std::string& path);
 //   u32 count, then the area abstraction's graph (the keyframes it holds
 //     when the run stops, oldest first), each as an area's keyframe
 //     (pose in the area abstraction's frame, scan).
-// Version 2 files (without the closures and the graph) and version 3
-// files (without the graph) are read too: no pending closures, an empty
-// graph. Every part is checked as a topology file is, each
+// Version 2 files (without the closures and the graph), version 3 files
+// (without the graph) and version 4 files (keyframes without their steps,
+// as topology format 1) are read too: no pending closures, an empty graph,
+// steps kUnknownStep. Every part is checked as a topology file is, each
 // hypothesis's current area must have a map, and a closure must join two
 // distinct areas of its hypothesis's map. Files are deflated as they are
 // encoded, so writing one holds the compressed file, not the whole payload.
-constexpr uint32_t kSessionFormatVersion = 4;
+constexpr uint32_t kSessionFormatVersion = 5;
 constexpr uint32_t kOldestSessionFormatVersion = 2;
 inline constexpr char kSessionMagic[8] = {'H', 'M', 'T', 'S', 'E', 'S', 'S', '\x1a'};
 
