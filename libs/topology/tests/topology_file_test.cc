@@ -257,6 +257,20 @@ void put_f32(std::string& s, float v) {
   put_u32(s, b);
 }
 
+// A topology payload's start: one area, id 0, the root (frame and creation
+// all zero), up to its count of `keyframes`.
+std::string one_root_area(uint32_t keyframes) {
+  std::string s;
+  put_u32(s, 1);            // one area
+  put_u32(s, 0);            // id
+  put_u32(s, 0xffffffffu);  // no parent
+  for (int i = 0; i < 3; ++i) put_f64(s, 0.0);
+  put_u64(s, 0);  // created step
+  put_f64(s, 0.0);  // created time
+  put_u32(s, keyframes);
+  return s;
+}
+
 // A keyframe in the documented layout: pose (1, 2, 0.5), step 42 when
 // `with_step` (topology format 2, session format 5), a two-beam scan.
 void append_keyframe(std::string& s, bool with_step) {
@@ -369,14 +383,7 @@ TEST(TopologyFile, EmptyMapRoundTrips) {
 
 TEST(TopologyFile, ReadsVersion1WithoutKeyframeSteps) {
   auto one_keyframe = [](bool with_step) {
-    std::string s;
-    put_u32(s, 1);            // one area
-    put_u32(s, 0);            // id
-    put_u32(s, 0xffffffffu);  // no parent
-    for (int i = 0; i < 3; ++i) put_f64(s, 0.0);
-    put_u64(s, 0);
-    put_f64(s, 0.0);
-    put_u32(s, 1);  // one keyframe
+    std::string s = one_root_area(1);
     append_keyframe(s, with_step);
     s.push_back(0);  // no map
     put_u32(s, 0);   // no arcs
@@ -548,14 +555,7 @@ TEST(TopologyFile, TilesFarApartAreRefusedBeforeTheirTableIsAllocated) {
   // square widened by a gap of 128 tiles (odometry jumps), or 4096 slots
   // per tile (OnlyAllocatedTilesAreStoredAndDeflated), no more.
   auto one_map = [](int32_t tx, int32_t ty) {
-    std::string s;
-    put_u32(s, 1);            // one area
-    put_u32(s, 0);            // id
-    put_u32(s, 0xffffffffu);  // no parent
-    for (int i = 0; i < 3; ++i) put_f64(s, 0.0);
-    put_u64(s, 0);
-    put_f64(s, 0.0);
-    put_u32(s, 0);  // no keyframes
+    std::string s = one_root_area(0);
     s.push_back(1);  // has a map
     put_f64(s, 0.05);
     put_u32(s, 2);
