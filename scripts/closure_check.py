@@ -31,10 +31,11 @@ A closure into known area A (its best mode: the robot in A's frame) is
                corridor's broken.
 A new area is
   new          no older area had a keyframe within --revisit of the robot;
-  revisit      one did: that place is now in two areas' maps. Harmless
-               where a later closure joins the two (a new area begun at a
-               doorway of a room mapped before); in a broken map, a loop
-               left open there.
+  revisit      one did (the nearest is named): that place is now in two
+               areas' maps. The area the robot leaves does not count: the
+               event's own arc joins the new area to it. Harmless where a later closure joins the two (a
+               new area begun at a doorway of a room mapped before); in a
+               broken map, a loop left open there.
 Only the keyframes taken before the robot entered the area it left at the
 event count: later ones may sit where a wrong closure put them. By step, a
 keyframe of the entering step itself counts too (it was taken, in the area
@@ -220,9 +221,12 @@ def judge(line, placed, ref, scans, near, tolerance, revisit):
             d["verdict"] = "unknown"
             continue
         if r["outcome"] == "new":
-            found = [n for n in (nearest_before(kfs, *before, now) for kfs in placed.values()) if n]
-            d["nearest_keyframe_m"] = min(n[0] for n in found) if found else None
-            d["verdict"] = "revisit" if found and d["nearest_keyframe_m"] <= revisit else "new"
+            found = [(n[0], aid) for aid, n in ((aid, nearest_before(kfs, *before, now))
+                                                for aid, kfs in sorted(placed.items())
+                                                if aid != d["from_area"]) if n]
+            nearest = min(found) if found else (None, None)
+            d["nearest_keyframe_m"], d["nearest_area"] = nearest
+            d["verdict"] = "revisit" if found and nearest[0] <= revisit else "new"
             continue
         found = nearest_before(placed.get(d["area"], []), *before, now)
         if found is None:
@@ -330,6 +334,8 @@ def main():
         extra = ""
         if d.get("nearest_keyframe_m") is not None:
             extra += f"  nearest keyframe {d['nearest_keyframe_m']:.2f} m"
+            if d.get("nearest_area") is not None:
+                extra += f" (area {d['nearest_area']})"
         if "mode_error_m" in d:
             extra += f"  mode off {d['mode_error_m']:.2f} m {d['mode_error_deg']:.1f} deg"
         print(f"step {d['step']:6d}  t {d['time']:.3f}  {d['from_area']} -> {to} "

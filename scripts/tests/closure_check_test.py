@@ -156,6 +156,8 @@ class ClosureCheck(unittest.TestCase):
         self.write_all()
         d = self.judged()["decisions"][2]
         self.assertEqual(d["verdict"], "revisit")
+        # Area 2's keyframe of step 40 is 0.5 m away; area 3's nearest, 2.5 m.
+        self.assertEqual((d["nearest_area"], d["nearest_keyframe_m"]), (2, 0.5))
         self.assertEqual(self.judged("--revisit", "0.25")["decisions"][2]["verdict"], "new")
 
     def test_rounded_timestamps_judge_nothing_they_cannot_place(self):
@@ -206,6 +208,16 @@ class ClosureCheck(unittest.TestCase):
             steps[1][2] = bad
             self.write_all(steps=steps)
             self.expect_error("area 1: a keyframe step is")
+
+    def test_a_new_area_beside_the_area_left_is_no_revisit(self):
+        # At step 90 the robot (x = 15 m) is 1 m from area 2's keyframes of
+        # the first pass, and leaves area 2: the event's arc joins the two.
+        # The nearest other area's keyframe is area 1's, 5 m away.
+        self.events[5] = event(90, 3, 2, "new", 5, 1, 5)
+        self.write_all()
+        d = self.judged()["decisions"][3]
+        self.assertEqual((d["verdict"], d["nearest_area"], d["nearest_keyframe_m"]),
+                         ("new", 1, 5.0))
 
     def test_the_dead_branch_is_judged_when_its_hypothesis_is_the_best(self):
         self.best = 6
