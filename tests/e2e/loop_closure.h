@@ -102,6 +102,8 @@ inline void expect_loop_closed_into_area_1(const std::string& out, int from_area
 
   const auto summary = nlohmann::json::parse(slurp(out + "/summary.json"));
   EXPECT_GE(summary["loop_closures_accepted"].get<int>(), 1);
+  // The embedded logs' clocks run forward.
+  EXPECT_EQ(summary["timestamps_not_increasing"].get<int>(), 0);
   // The hypothesis the outputs draw was made by some event's outcome.
   const std::string best = std::to_string(summary["best_hypothesis"].get<unsigned>());
   bool made = false;

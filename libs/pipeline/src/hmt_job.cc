@@ -261,7 +261,9 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, InputSteps& steps, const LogOpe
   // The best hypothesis's filter, over the whole log (a hypothesis
   // carries its parent's counts).
   warn_if_scans_did_not_match(j["metric_slam"]);
+  steps.warn_if_clock_faults();
   j["input"] = source;
+  j["timestamps_not_increasing"] = steps.clock_faults().count;
   j["particles"] = opt.rbpf.particles;
   j["area_tau"] = opt.area.partition.tau;
   j["matching_range_m"] = opt.rbpf.matcher.max_range;

@@ -61,8 +61,23 @@ bool InputSteps::next(LogStep& out) {
   if (ahead_.empty() && !pull()) return false;
   out = std::move(ahead_.front());
   ahead_.pop_front();
+  if (taken_ > 0 && !(out.timestamp > last_time_) && clock_.count++ == 0) {
+    clock_.first_step = taken_;
+    clock_.first_time = out.timestamp;
+    clock_.time_before = last_time_;
+  }
+  last_time_ = out.timestamp;
   ++taken_;
   return true;
+}
+
+void InputSteps::warn_if_clock_faults() const {
+  if (clock_.count == 0) return;
+  std::fprintf(stderr,
+               "hmt-slam: warning: the log's timestamps do not increase at %zu of its %zu "
+               "scans (first at scan %zu: %.6f after %.6f); the outputs keep them as read, "
+               "so compare trajectories by scan index, not by time\n",
+               clock_.count, taken_, clock_.first_step, clock_.first_time, clock_.time_before);
 }
 
 }  // namespace hmt::pipeline

@@ -120,6 +120,7 @@ JobSummary run_metric_job(const JobOptions& opt, InputSteps& steps,
   nlohmann::json j;
   j["input"] = steps.source();
   j["scans"] = sum.scans;
+  j["timestamps_not_increasing"] = steps.clock_faults().count;
   j["particles"] = opt.rbpf.particles;
   j["wall_time_s"] = sum.wall_time_s;
   j["peak_rss_mb"] = static_cast<double>(sum.peak_rss_bytes) / (1024.0 * 1024.0);
@@ -130,6 +131,7 @@ JobSummary run_metric_job(const JobOptions& opt, InputSteps& steps,
   j["final_ess"] = filter.ess();
   write_text_atomically(out_dir + "/summary.json", j.dump(2) + "\n");
   warn_if_scans_did_not_match(counts);
+  steps.warn_if_clock_faults();
   return sum;
 }
 

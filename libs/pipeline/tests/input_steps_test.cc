@@ -64,6 +64,31 @@ TEST(InputSteps, BrokenOdometryNamesTheStepOfTheLog) {
   }
 }
 
+TEST(InputSteps, CountsTimestampsThatDoNotIncrease) {
+  Log log = straight_log(8);
+  InputOptions in;
+  in.first_step = 1;
+  {
+    InputSteps steps(io::stream_of(log), in);
+    LogStep s;
+    while (steps.next(s)) {
+    }
+    EXPECT_EQ(steps.clock_faults().count, 0u);
+  }
+  log.steps[3].timestamp = 2.0;  // repeats step 2's
+  log.steps[6].timestamp = 4.5;  // before step 5's
+  InputSteps steps(io::stream_of(log), in);
+  LogStep s;
+  while (steps.next(s)) {
+  }
+  const InputSteps::ClockFaults& c = steps.clock_faults();
+  EXPECT_EQ(c.count, 2u);
+  // Indices among the steps taken (the log's step 3 is the second).
+  EXPECT_EQ(c.first_step, 2u);
+  EXPECT_EQ(c.first_time, 2.0);
+  EXPECT_EQ(c.time_before, 2.0);
+}
+
 uint32_t fingerprint(const Log& log) {
   uint32_t crc = 0;
   for (const LogStep& s : log.steps) crc = checkpoint::log_fingerprint(crc, s);

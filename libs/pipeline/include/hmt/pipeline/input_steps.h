@@ -33,6 +33,18 @@ class InputSteps : public io::LogStream {
   bool next(LogStep& out) override;
   // How many steps have been taken.
   size_t taken() const { return taken_; }
+  // The steps taken whose timestamp is not after the step before's: a clock
+  // that repeats (csail's log rounds its times to 10 s), jumps back, or is
+  // garbage. The filter does not use the times; the outputs keep them.
+  struct ClockFaults {
+    size_t count = 0;
+    size_t first_step = 0;  // index among the steps taken, as trajectory.tum's lines
+    double first_time = 0.0, time_before = 0.0;
+  };
+  const ClockFaults& clock_faults() const { return clock_; }
+  // A warning on stderr when there are any: trajectories are then to be
+  // compared by scan index, not by time.
+  void warn_if_clock_faults() const;
   // How many steps there are, when the reader knows before the end.
   std::optional<size_t> total_steps() const override;
   // Roughly how much of the steps have been read, in [0, 1], for progress
@@ -50,6 +62,8 @@ class InputSteps : public io::LogStream {
   size_t pulled_ = 0;  // selected steps read from the stream
   size_t taken_ = 0;
   bool skipped_ = false;  // first_step steps dropped
+  ClockFaults clock_;
+  double last_time_ = 0.0;  // the last step taken's timestamp
 };
 
 }  // namespace hmt::pipeline
