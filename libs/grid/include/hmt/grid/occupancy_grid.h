@@ -59,10 +59,10 @@ struct Cell {
   int8_t hy = 0;
 };
 constexpr double kLogOddsScale = 20.0;
-// A probability's log-odds in those steps, rounded: the thresholds that
-// insertion, the matcher and TSBI compare cells against.
-LogOdds scaled_logit(double p);
 constexpr double kHitScale = 254.0;
+// A probability's log-odds in steps of 1/kLogOddsScale, rounded: the
+// thresholds that insertion, the matcher and TSBI compare cells against.
+LogOdds scaled_logit(double p);
 
 struct Tile {
   static constexpr int kCells = kTileSize * kTileSize;

@@ -21,7 +21,8 @@
 //       u32 id; u32 frame.parent (0xffffffff = none); f64 x, y, theta of
 //       frame.origin_in_parent; u64 created_step; f64 created_time
 //       u32 keyframe count, then per keyframe: f64 x, y, theta;
-//         u64 step (0xffffffffffffffff = not known); f64 timestamp; f32 angle_min, angle_increment, max_range;
+//         u64 step (0xffffffffffffffff = not known); f64 timestamp;
+//         f32 angle_min, angle_increment, max_range;
 //         f64 sensor x, y, theta; u32 beams; f32 ranges[beams];
 //         u8 valid[beams]
 //       u8 has_map; if 1: f64 resolution; u32 tile count; then per
