@@ -33,9 +33,10 @@ A new area is
   new          no older area had a keyframe within --revisit of the robot;
   revisit      one did (the nearest is named): that place is now in two
                areas' maps. The area the robot leaves does not count: the
-               event's own arc joins the new area to it. Harmless where a later closure joins the two (a
-               new area begun at a doorway of a room mapped before); in a
-               broken map, a loop left open there.
+               event's own arc joins the new area to it. Harmless where a
+               later closure joins the two (a new area begun at a doorway of
+               a room mapped before); in a broken map, a loop left open
+               there.
 Only the keyframes taken before the robot entered the area it left at the
 event count: later ones may sit where a wrong closure put them. By step, a
 keyframe of the entering step itself counts too (it was taken, in the area
