@@ -171,9 +171,10 @@ class Reference:
         return out
 
     def at_step(self, step, time, scans):
-        """The pose at a log step: by index when the reference holds one pose
-        per scan of the run (as many as `scans`), else by time."""
-        if scans == len(self.by_index) and 0 <= step < scans:
+        """The pose at a log step: by index when the step is known (not None)
+        and the reference holds one pose per scan of the run (as many as
+        `scans`), else by time."""
+        if step is not None and scans == len(self.by_index) and 0 <= step < scans:
             return tuple(self.by_index[step])
         return self.at([time])[0]
 
@@ -186,7 +187,7 @@ def placed_keyframes(areas, ref, scans):
     for aid, kfs in areas.items():
         placed = []
         for time, x, y, theta, step in kfs:
-            p = ref.at_step(step, time, scans) if step is not None else ref.at([time])[0]
+            p = ref.at_step(step, time, scans)
             if p is not None:
                 placed.append((time, step, (x, y, theta), p))
         out[aid] = placed
