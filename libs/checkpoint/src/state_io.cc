@@ -309,7 +309,8 @@ void serialize(A& ar, ClosureRecord& c) {
 namespace hmt::metric_slam {
 template <class A>
 void serialize(A& ar, Particle& p) {
-  ar(p.pose, p.map, p.path, p.log_weight, p.path_log_weight, p.last_insertion, p.inserted);
+  ar(p.pose, p.map, p.path, p.estimates, p.log_weight, p.path_log_weight, p.last_insertion,
+     p.inserted);
 }
 template <class A>
 void serialize(A& ar, RbpfStats& s) {

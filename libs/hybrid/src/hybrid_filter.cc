@@ -352,7 +352,7 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
   auto seg = std::make_shared<TrajectorySegment>();
   seg->area = c;
   seg->first_step = parent.area_start_step;
-  seg->poses = bp.path;
+  seg->poses = bp.estimates;
   parent.trajectory.push_back(std::move(seg));
   // The snapshot's robot pose in the AAM frame (the known-area outcomes
   // place the robot as it was then).
@@ -762,7 +762,7 @@ std::vector<TrajectorySegment> HybridFilter::final_trajectory() const {
   TrajectorySegment cur;
   cur.area = h.current_area();
   cur.first_step = h.area_start_step;
-  cur.poses = h.filter.best().path;
+  cur.poses = h.filter.best().estimates;
   out.push_back(std::move(cur));
   return out;
 }

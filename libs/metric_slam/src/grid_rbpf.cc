@@ -36,6 +36,7 @@ void GridRbpf::initialise(const LogStep& step) {
   p.inserted = true;
   p.last_insertion = p.pose;
   p.path.push_back(p.pose);
+  p.estimates.push_back(p.pose);
   // Every particle starts from the same map: the copies share its tiles.
   particles_.assign(static_cast<size_t>(opt_.particles), p);
 }
@@ -123,7 +124,10 @@ bool GridRbpf::begin_step(const LogStep& input) {
   pending_motion_ = pending_motion_ + input.odometry_increment;
   ++stats_.steps;
   if (within_spacing(pending_motion_, opt_.update_distance, opt_.update_angle)) {
-    for (auto& p : particles_) p.path.push_back(p.pose + pending_motion_);
+    for (auto& p : particles_) {
+      p.path.push_back(p.pose + pending_motion_);
+      p.estimates.push_back(p.estimates.back() + input.odometry_increment);
+    }
     ++stats_.skipped_steps;
     return false;
   }
@@ -211,6 +215,7 @@ void GridRbpf::move(size_t i) {
   const Pose2D& u = st.step.odometry_increment;
   const size_t n = pts.hit.size();
   bool fallback = true;
+  Pose2D estimate;  // the proposal's mean, where the scan was matched
 
   if (opt_.proposal == ProposalKind::kOptimal && n > 0) {
     MatchScore ms;
@@ -230,6 +235,8 @@ void GridRbpf::move(size_t i) {
         const Eigen::Vector3d z(rng.normal(), rng.normal(), rng.normal());
         const Eigen::Vector3d d = lat.mean + L * z;
         p.pose = Pose2D(mode.x + d.x(), mode.y + d.y(), wrap_angle(mode.theta + d.z()));
+        estimate = Pose2D(mode.x + lat.mean.x(), mode.y + lat.mean.y(),
+                          wrap_angle(mode.theta + lat.mean.z()));
         p.log_weight += lat.log_eta;
         p.path_log_weight += lat.log_eta;
         fallback = false;
@@ -269,6 +276,7 @@ void GridRbpf::move(size_t i) {
     }
   }
   p.path.push_back(p.pose);
+  p.estimates.push_back(fallback ? p.pose : estimate);
   maybe_insert(p, st.step.scan);
   st.fell_back[i] = fallback;
 }
@@ -368,6 +376,8 @@ std::vector<Pose2D> GridRbpf::start_new_area(const std::vector<SeedScan>& seeds,
   for (auto& p : particles_) {
     origins.push_back(p.pose);
     p.map = fresh;
+    // The estimate goes on from where it was, seen from the new origin.
+    p.estimates.assign(1, p.estimates.back() - p.pose);
     p.pose = Pose2D();
     p.path.assign(1, p.pose + pending_motion_);
     p.last_insertion = p.pose;
@@ -416,6 +426,7 @@ void GridRbpf::load_area(const grid::OccupancyGrid& map, const std::vector<Pose2
     p.map = entered;
     p.pose = poses.size() == 1 ? poses[0] : poses[i];
     p.path.assign(1, p.pose);
+    p.estimates.assign(1, p.pose);
     p.last_insertion = p.pose;
     p.inserted = true;
   }
@@ -426,6 +437,7 @@ void GridRbpf::restart(const grid::OccupancyGrid& map, const Pose2D& pose) {
   p.map = map;
   p.pose = pose;
   p.path.assign(1, pose);
+  p.estimates.assign(1, pose);
   p.last_insertion = pose;
   p.inserted = true;
   particles_.assign(static_cast<size_t>(opt_.particles), p);

@@ -51,6 +51,60 @@ TEST(GridRbpf, TracksBetterThanOdometry) {
   EXPECT_EQ(s.odometry_fallbacks, 0u);
 }
 
+// A particle moves to a pose drawn from its proposal; its estimates record
+// the proposal's mean. At the first filtered step every particle starts from
+// one pose in one map, so they share one proposal: the draws differ, the
+// estimates do not, and they lie where the robot went.
+TEST(GridRbpf, TheEstimatesAreTheProposalsMeanNotTheDraw) {
+  const auto run = loop_run(11);
+  GridRbpf f(small_filter(2));
+  f.process(run.log.steps[0]);
+  f.process(run.log.steps[1]);
+  ASSERT_EQ(f.stats().skipped_steps, 0u);
+  ASSERT_EQ(f.stats().odometry_fallbacks, 0u);
+  const Pose2D truth = run.truth[1] - run.truth[0];
+  const Pose2D mean = f.particles()[0].estimates.back();
+  bool draws_differ = false;
+  for (const Particle& p : f.particles()) {
+    ASSERT_EQ(p.estimates.size(), 2u);
+    ASSERT_EQ(p.path.size(), 2u);
+    EXPECT_EQ(p.estimates.back().x, mean.x);
+    EXPECT_EQ(p.estimates.back().y, mean.y);
+    EXPECT_EQ(p.estimates.back().theta, mean.theta);
+    // The path holds the draw, which the filter goes on from.
+    EXPECT_EQ(p.path.back().x, p.pose.x);
+    EXPECT_EQ(p.path.back().theta, p.pose.theta);
+    draws_differ |= p.pose.x != mean.x || p.pose.y != mean.y || p.pose.theta != mean.theta;
+  }
+  EXPECT_TRUE(draws_differ);
+  EXPECT_LT(std::hypot(mean.x - truth.x, mean.y - truth.y), 0.05);
+  EXPECT_LT(std::fabs(wrap_angle(mean.theta - truth.theta)), 0.02);
+}
+
+// Over a whole loop the estimates follow the true motion from step to step
+// more closely than the draws do: the draws add the proposal's spread to
+// every step, the estimates only what the match leaves.
+TEST(GridRbpf, TheEstimatesMoveStepToStepAsTheRobotDidBetterThanTheDraws) {
+  const auto run = loop_run(12);
+  RbpfOptions o = small_filter(2);
+  o.proposal_gain = 10;  // a proposal wide enough that its spread shows
+  GridRbpf f(o);
+  for (const auto& st : run.log.steps) f.process(st);
+  const Particle& b = f.best();
+  ASSERT_EQ(b.path.size(), run.log.steps.size());
+  ASSERT_EQ(b.estimates.size(), run.log.steps.size());
+  auto step_error = [&](const std::vector<Pose2D>& poses) {
+    double sum = 0.0;
+    for (size_t k = 1; k < poses.size(); ++k) {
+      const Pose2D e = (poses[k] - poses[k - 1]) - (run.truth[k] - run.truth[k - 1]);
+      sum += e.norm();
+    }
+    return sum / static_cast<double>(poses.size() - 1);
+  };
+  const double drawn = step_error(b.path), estimated = step_error(b.estimates);
+  EXPECT_LT(estimated, 0.8 * drawn) << "estimates " << estimated << " m, draws " << drawn << " m";
+}
+
 // The odometry of a few steps reports a turn the robot did not make (a
 // slipping wheel): 0.7 rad each, more than the hill climbing alone recovers
 // from in this world (it does from 0.5).
@@ -232,12 +286,18 @@ TEST(GridRbpf, NewAreaAndReloadInterface) {
   for (size_t i = 0; i < 20; ++i) f.process(run.log.steps[i]);
   const grid::OccupancyGrid first_area = f.best().map;
   const Pose2D before = f.best().pose;
+  std::vector<Pose2D> estimated;
+  for (const auto& p : f.particles()) estimated.push_back(p.estimates.back());
   const auto origins = f.start_new_area();
   ASSERT_EQ(origins.size(), f.particles().size());
-  for (const auto& p : f.particles()) {
+  for (size_t i = 0; i < origins.size(); ++i) {
+    const Particle& p = f.particles()[i];
     EXPECT_EQ(p.pose.x, 0.0);
     EXPECT_EQ(p.path.size(), 1u);
     EXPECT_LT(p.map.tile_count(), first_area.tile_count() + 1);
+    // The estimates go on from where they were, seen from the new origin.
+    ASSERT_EQ(p.estimates.size(), 1u);
+    EXPECT_LT((origins[i] + p.estimates[0] - estimated[i]).norm(), 1e-12);
   }
   EXPECT_NEAR(origins[f.best_index()].x, before.x, 1e-12);
   f.load_area(first_area, {before});

@@ -101,8 +101,9 @@ JobSummary run_metric_job(const JobOptions& opt, InputSteps& steps,
 
   const metric_slam::Particle& best = filter.best();
   std::vector<io::StampedPose> traj;
-  traj.reserve(best.path.size());
-  for (size_t i = 0; i < best.path.size(); ++i) traj.push_back({stamps[i], best.path[i]});
+  traj.reserve(best.estimates.size());
+  for (size_t i = 0; i < best.estimates.size(); ++i)
+    traj.push_back({stamps[i], best.estimates[i]});
 
   JobSummary sum;
   sum.scans = n;
