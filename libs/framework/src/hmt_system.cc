@@ -320,7 +320,7 @@ void HmtSystem::record_step(uint64_t index, double time, bool sample_memory) {
   e.step = index;
   e.time = time;
   e.area = best.current_area();
-  e.pose_in_area = best.filter.best().path.back();
+  e.pose_in_area = best.filter.best().estimates.back();
   e.pose_continuous = best.in_keyframes(e.pose_in_area);
   e.ess = best.filter.ess();
   e.hypotheses = hyps.size();

@@ -30,7 +30,7 @@ struct MetricEstimate {
   uint64_t step = 0;        // the last step processed
   double time = 0.0;        // its log timestamp
   topology::AreaId area = topology::kNoArea;
-  Pose2D pose_in_area;      // best particle of the most probable hypothesis
+  Pose2D pose_in_area;      // its best particle's estimate, in the most probable hypothesis
   Pose2D pose_continuous;   // the same pose in the area abstraction's frame
   double ess = 0.0;         // of the most probable hypothesis
   size_t hypotheses = 0;
