@@ -8,6 +8,7 @@
 
 #include "hmt/common/error.h"
 #include "hmt/common/log_sum_exp.h"
+#include "hmt/common/pose_gaussian.h"
 #include "hmt/grid/scan_insertion.h"
 
 namespace hmt::metric_slam {
@@ -233,10 +234,8 @@ void GridRbpf::move(size_t i) {
       if (lat.ok) {
         const Eigen::Matrix3d L = lat.cov.llt().matrixL();
         const Eigen::Vector3d z(rng.normal(), rng.normal(), rng.normal());
-        const Eigen::Vector3d d = lat.mean + L * z;
-        p.pose = Pose2D(mode.x + d.x(), mode.y + d.y(), wrap_angle(mode.theta + d.z()));
-        estimate = Pose2D(mode.x + lat.mean.x(), mode.y + lat.mean.y(),
-                          wrap_angle(mode.theta + lat.mean.z()));
+        p.pose = perturbed(mode, lat.mean + L * z);
+        estimate = perturbed(mode, lat.mean);
         p.log_weight += lat.log_eta;
         p.path_log_weight += lat.log_eta;
         fallback = false;

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "hmt/common/error.h"
+#include "hmt/common/pose_gaussian.h"
 #include "match_window.h"
 
 namespace hmt::metric_slam {
@@ -360,7 +361,7 @@ bool ScanMatcher::gauss_newton_step(const Eigen::Matrix3d& H, const Eigen::Vecto
       ldlt.vectorD().minCoeff() <= 1e-9 * H.trace())
     return false;  // degenerate (e.g. a featureless corridor): keep the pose
   const Eigen::Vector3d d = ldlt.solve(-g);
-  *pose = Pose2D(pose->x + d.x(), pose->y + d.y(), wrap_angle(pose->theta + d.z()));
+  *pose = perturbed(*pose, d);
   return true;
 }
 

@@ -96,9 +96,7 @@ PoseGaussian fuse(const PoseGaussian& a, const PoseGaussian& b) {
   // b's mean written next to a's (angle unwrapped), then the information-
   // weighted mean cov (Omega_a mu_a + Omega_b mu_b) = mu_a + cov Omega_b d.
   const Eigen::Vector3d shift = cov * (omega_b * difference(b.mean, a.mean));
-  const Pose2D mean(a.mean.x + shift.x(), a.mean.y + shift.y(),
-                    wrap_angle(a.mean.theta + shift.z()));
-  return PoseGaussian(mean, cov);
+  return PoseGaussian(perturbed(a.mean, shift), cov);
 }
 
 Pose2D sample(const PoseGaussian& g, Random& rng) {
@@ -106,7 +104,7 @@ Pose2D sample(const PoseGaussian& g, Random& rng) {
   const Eigen::Vector3d sd = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   const Eigen::Vector3d z(rng.normal(), rng.normal(), rng.normal());
   const Eigen::Vector3d e = es.eigenvectors() * sd.cwiseProduct(z);
-  return {g.mean.x + e.x(), g.mean.y + e.y(), wrap_angle(g.mean.theta + e.z())};
+  return perturbed(g.mean, e);
 }
 
 }  // namespace hmt::topology

@@ -137,8 +137,7 @@ std::vector<Pose2D> match_starts(const PoseGaussian& prior, double k) {
       for (int c = -1; c <= 1; ++c) {
         if (k == 0 && (a || b || c)) continue;
         const Eigen::Vector3d d = L * Eigen::Vector3d(a * k, b * k, c * k);
-        starts.emplace_back(prior.mean.x + d.x(), prior.mean.y + d.y(),
-                            wrap_angle(prior.mean.theta + d.z()));
+        starts.push_back(perturbed(prior.mean, d));
       }
   // The mean first: on ties between modes the one found from it is kept.
   std::stable_partition(starts.begin(), starts.end(), [&](const Pose2D& p) {

@@ -26,4 +26,10 @@ struct PoseGaussian {
       : mean(m), cov(c) {}
 };
 
+// `p` moved by the additive perturbation e = (e_x, e_y, e_theta) of the
+// parameterisation above.
+inline Pose2D perturbed(const Pose2D& p, const Eigen::Vector3d& e) {
+  return Pose2D(p.x + e.x(), p.y + e.y(), wrap_angle(p.theta + e.z()));
+}
+
 }  // namespace hmt

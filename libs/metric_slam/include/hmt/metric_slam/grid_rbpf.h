@@ -44,8 +44,9 @@ struct Particle {
   // estimate of that step given the path before it) rather than the drawn
   // pose, whose spread around it is sampling noise that no later step
   // removes (on Intel's consecutive scans 2 mm of a relation error of 28);
-  // elsewhere the odometry's motion from the estimate before, or the pose a
-  // new area or a closure gave. The filter itself runs on the draws.
+  // on a skipped step, the odometry's motion from the estimate before;
+  // across a new area, the estimate seen from the new origin; on entering a
+  // known area or a restart, the pose given. The filter runs on the draws.
   std::vector<Pose2D> estimates;
   double log_weight = 0.0;     // unnormalised, reset by resampling
   // Sum of the weight updates along the whole path, kept through resampling:
