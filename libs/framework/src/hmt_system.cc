@@ -354,9 +354,7 @@ void HmtSystem::on_keyframe(KeyframeMsg& m) {
 void HmtSystem::on_event(EventMsg& m) {
   if (event_hook_) event_hook_(m.step);
   const Clock::time_point t0 = Clock::now();
-  m.considered.resize(m.inputs.size());
-  for (size_t i = 0; i < m.inputs.size(); ++i)
-    m.outcomes.push_back(filter_.evaluate(m.inputs[i], &m.considered[i]));
+  m.outcomes = filter_.evaluate(m.inputs, &m.considered);
   add_time(times_.tsbi, m.step, ms_since(t0));
   if (!event_results_.push(std::move(m))) throw Error(ExitCode::kInternal, "metric SLAM stopped");
 }

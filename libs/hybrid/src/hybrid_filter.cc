@@ -84,9 +84,8 @@ void HybridFilter::finish() {
 
 void HybridFilter::run_event(const area::AreaDecision& decision) {
   const std::vector<EventInput> inputs = prepare_event(decision);
-  std::vector<std::vector<tsbi::Outcome>> outcomes;
-  std::vector<std::vector<tsbi::CandidateReport>> considered(inputs.size());
-  for (size_t i = 0; i < inputs.size(); ++i) outcomes.push_back(evaluate(inputs[i], &considered[i]));
+  std::vector<std::vector<tsbi::CandidateReport>> considered;
+  const std::vector<std::vector<tsbi::Outcome>> outcomes = evaluate(inputs, &considered);
   apply_event(decision, inputs, outcomes, &considered);
 }
 
@@ -230,9 +229,13 @@ std::vector<EventInput> HybridFilter::prepare_event(const area::AreaDecision& de
   return inputs;
 }
 
-std::vector<tsbi::Outcome> HybridFilter::evaluate(
-    const EventInput& in, std::vector<tsbi::CandidateReport>* considered) const {
-  return tsbi_.evaluate(in.map, in.from_area, in.robot, in.observations, considered);
+std::vector<std::vector<tsbi::Outcome>> HybridFilter::evaluate(
+    const std::vector<EventInput>& inputs,
+    std::vector<std::vector<tsbi::CandidateReport>>* considered) const {
+  std::vector<tsbi::TransitionModel::Query> queries;
+  for (const EventInput& in : inputs)
+    queries.push_back({&in.map, in.from_area, in.robot, &in.observations});
+  return tsbi_.evaluate_all(queries, considered);
 }
 
 void HybridFilter::apply_event(const area::AreaDecision& decision,

@@ -553,14 +553,13 @@ void evict_least_recent(Cache& cache, size_t budget, Bytes&& bytes, InUse&& in_u
 }  // namespace
 
 std::vector<std::shared_ptr<const MatchField>> TransitionModel::fields_for(
-    const topology::HmtMap& map, const std::vector<Outcome>& areas) {
+    const std::vector<std::shared_ptr<const grid::OccupancyGrid>>& maps) {
   // A map only the cache still holds belongs to no hypothesis any more.
   for (auto it = fields_.begin(); it != fields_.end();)
     it = it->second.map.use_count() == 1 ? fields_.erase(it) : std::next(it);
   ++field_calls_;
   std::vector<std::shared_ptr<const grid::OccupancyGrid>> missing;
-  for (const Outcome& o : areas) {
-    const auto& m = map.area(o.area).map;
+  for (const auto& m : maps) {
     const auto it = fields_.find(m.get());
     if (it != fields_.end())
       it->second.used = field_calls_;
@@ -574,7 +573,7 @@ std::vector<std::shared_ptr<const MatchField>> TransitionModel::fields_for(
   for (size_t i = 0; i < missing.size(); ++i)
     fields_[missing[i].get()] = {missing[i], built[i], field_calls_};
   std::vector<std::shared_ptr<const MatchField>> out;
-  for (const Outcome& o : areas) out.push_back(fields_.at(map.area(o.area).map.get()).field);
+  for (const auto& m : maps) out.push_back(fields_.at(m.get()).field);
   // Over the budget: the least recently used go, never one this call uses.
   // A field is a function of its map alone, so what is evicted and rebuilt
   // never changes a result.
@@ -636,11 +635,36 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
                                                const PoseGaussian& robot,
                                                const Observations& obs,
                                                std::vector<CandidateReport>* considered) {
-  std::vector<Outcome> outcomes(1);
-  outcomes[0].log_f = opt_.log_eta;
-  std::vector<CandidateReport> out_of_reach;
-  std::vector<Outcome> areas =
-      reachable_areas(map, current, robot, obs, considered ? &out_of_reach : nullptr);
+  std::vector<std::vector<CandidateReport>> reports;
+  std::vector<std::vector<Outcome>> out =
+      evaluate_all({Query{&map, current, robot, &obs}}, considered ? &reports : nullptr);
+  if (considered) *considered = std::move(reports.front());
+  return std::move(out.front());
+}
+
+std::vector<std::vector<Outcome>> TransitionModel::evaluate_all(
+    const std::vector<Query>& queries, std::vector<std::vector<CandidateReport>>* considered) {
+  // The known areas of every query, as tasks in (query, area id) order.
+  struct Task {
+    size_t query = 0;
+    Outcome area;
+    std::shared_ptr<const grid::OccupancyGrid> map;
+    const topology::Area* known = nullptr;
+  };
+  std::vector<Task> tasks;
+  std::vector<std::vector<CandidateReport>> out_of_reach(queries.size());
+  for (size_t q = 0; q < queries.size(); ++q) {
+    const Query& query = queries[q];
+    for (Outcome& o : reachable_areas(*query.map, query.current, query.robot,
+                                      *query.observations,
+                                      considered ? &out_of_reach[q] : nullptr)) {
+      const topology::Area& area = query.map->area(o.area);
+      tasks.push_back({q, std::move(o), area.map, &area});
+    }
+  }
+  const auto obs_of = [&](const Task& t) -> const Observations& {
+    return *queries[t.query].observations;
+  };
   // Each area and each of its starts is computed on its own, and the modes
   // are summed in start order: the order of the threads cannot matter.
   //
@@ -657,29 +681,28 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
   // costs differ a hundredfold (a look-alike corridor under a wide prior
   // against a room), and searching them two by two in step left a thread
   // idle for much of the Infinite Corridor's late events.
-  std::vector<Search> searches(areas.size());
+  std::vector<Search> searches(tasks.size());
   const size_t group = pool_ ? static_cast<size_t>(std::max(pool_->threads(), 1)) : 1;
   // A group: areas in order until their fields would pass the field
   // cache's budget, and at least one area per thread.
   const size_t budget = static_cast<size_t>(opt_.field_cache_mb) << 20;
-  for (size_t first = 0, end = 0; first < areas.size(); first = end) {
-    for (size_t bytes = 0; end < areas.size(); ++end) {
-      const size_t b = field_bytes_bound(*map.area(areas[end].area).map);
+  for (size_t first = 0, end = 0; first < tasks.size(); first = end) {
+    std::vector<std::shared_ptr<const grid::OccupancyGrid>> maps;
+    for (size_t bytes = 0; end < tasks.size(); ++end) {
+      const size_t b = field_bytes_bound(*tasks[end].map);
       if (end - first >= group && bytes + b > budget) break;
       bytes += b;
+      maps.push_back(tasks[end].map);
     }
-    const std::vector<Outcome> some(areas.begin() + static_cast<std::ptrdiff_t>(first),
-                                    areas.begin() + static_cast<std::ptrdiff_t>(end));
-    const auto fields = fields_for(map, some);
+    const auto fields = fields_for(maps);
     for_each_index(end - first, [&](size_t j) {
-      const size_t i = first + j;
-      const auto& area_map = map.area(areas[i].area).map;
-      Search& search = searches[i];
-      search = prepare_search(*area_map, *fields[j], areas[i].prior, obs);
+      const Task& t = tasks[first + j];
+      Search& search = searches[first + j];
+      search = prepare_search(*t.map, *fields[j], t.area.prior, obs_of(t));
       std::shared_ptr<const CostStack> stack;
       if (search.wide && opt_.search == TsbiOptions::WideSearch::kBnb)
-        stack = stack_for(area_map.get(), fields[j]);
-      add_wide_starts(&search, *fields[j], stack.get(), obs);
+        stack = stack_for(t.map.get(), fields[j]);
+      add_wide_starts(&search, *fields[j], stack.get(), obs_of(t));
     });
   }
   // Nothing needed any more: the cache drops maps no hypothesis holds and
@@ -688,26 +711,27 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
     std::lock_guard<std::mutex> lock(stacks_mutex_);
     trim_stacks();
   }
-  std::vector<std::pair<size_t, size_t>> jobs;  // (area, start)
-  std::vector<std::vector<Match>> matches(areas.size());
-  for (size_t i = 0; i < areas.size(); ++i) {
+  std::vector<std::pair<size_t, size_t>> jobs;  // (task, start)
+  std::vector<std::vector<Match>> matches(tasks.size());
+  for (size_t i = 0; i < tasks.size(); ++i) {
     matches[i].resize(searches[i].starts.size());
     for (size_t k = 0; k < searches[i].starts.size(); ++k) jobs.emplace_back(i, k);
   }
   for_each_index(jobs.size(), [&](size_t j) {
     const auto [i, k] = jobs[j];
-    matches[i][k] = match_from(*map.area(areas[i].area).map, searches[i].starts[k], obs);
+    matches[i][k] = match_from(*tasks[i].map, searches[i].starts[k], obs_of(tasks[i]));
   });
-  std::vector<char> candidate(areas.size(), 0);
-  std::vector<CandidateReport> reports(considered ? areas.size() : 0);
-  for_each_index(areas.size(), [&](size_t i) {
-    const topology::Area& area = map.area(areas[i].area);
+  std::vector<char> candidate(tasks.size(), 0);
+  std::vector<CandidateReport> reports(considered ? tasks.size() : 0);
+  for_each_index(tasks.size(), [&](size_t i) {
+    Task& t = tasks[i];
+    const Observations& obs = obs_of(t);
     const ExpectedLikelihood f = sum_modes(searches[i], matches[i], obs);
     using V = CandidateReport::Verdict;
     auto report = [&](V verdict) {
       if (!considered) return;
       CandidateReport& r = reports[i];
-      r = candidate_report(areas[i].area, areas[i].prior);
+      r = candidate_report(t.area.area, t.area.prior);
       r.verdict = verdict;
       r.wide = searches[i].wide;
       r.starts = static_cast<uint32_t>(searches[i].starts.size());
@@ -721,28 +745,35 @@ std::vector<Outcome> TransitionModel::evaluate(const topology::HmtMap& map,
     // worth the area check (a third of the Infinite Corridor's late
     // events went to checking such look-alikes).
     if (f.log_f < opt_.log_eta + std::log(opt_.min_probability)) return report(V::kImprobable);
-    if (opt_.area_check && !same_area(area, f.robot.mean, obs)) return report(V::kAreaCheck);
+    if (opt_.area_check && !same_area(*t.known, f.robot.mean, obs)) return report(V::kAreaCheck);
     report(V::kOutcome);
-    Outcome& o = areas[i];
+    Outcome& o = t.area;
     o.log_f = f.log_f;
     o.robot = f.robot;
     o.match_ratio = f.match_ratio;
     o.modes = f.modes;
     candidate[i] = 1;
   });
-  for (size_t i = 0; i < areas.size(); ++i)
-    if (candidate[i]) outcomes.push_back(std::move(areas[i]));
+  // Per query: the unexplored area first, then its candidates in id order.
+  std::vector<std::vector<Outcome>> out(queries.size(), std::vector<Outcome>(1));
+  for (std::vector<Outcome>& outcomes : out) outcomes[0].log_f = opt_.log_eta;
+  for (size_t i = 0; i < tasks.size(); ++i)
+    if (candidate[i]) out[tasks[i].query].push_back(std::move(tasks[i].area));
+  for (std::vector<Outcome>& outcomes : out) {
+    std::vector<double> lf;
+    for (const Outcome& o : outcomes) lf.push_back(o.log_f);
+    const std::vector<double> p = normalised_exp(std::move(lf));
+    for (size_t i = 0; i < outcomes.size(); ++i) outcomes[i].probability = p[i];
+  }
   if (considered) {
     *considered = std::move(out_of_reach);
-    considered->insert(considered->end(), reports.begin(), reports.end());
-    std::sort(considered->begin(), considered->end(),
-              [](const CandidateReport& a, const CandidateReport& b) { return a.area < b.area; });
+    for (size_t i = 0; i < tasks.size(); ++i)
+      (*considered)[tasks[i].query].push_back(std::move(reports[i]));
+    for (std::vector<CandidateReport>& c : *considered)
+      std::sort(c.begin(), c.end(),
+                [](const CandidateReport& a, const CandidateReport& b) { return a.area < b.area; });
   }
-  std::vector<double> lf;
-  for (const Outcome& o : outcomes) lf.push_back(o.log_f);
-  const std::vector<double> p = normalised_exp(std::move(lf));
-  for (size_t i = 0; i < outcomes.size(); ++i) outcomes[i].probability = p[i];
-  return outcomes;
+  return out;
 }
 
 topology::PoseGaussian candidate_frame(const topology::HmtMap& map,

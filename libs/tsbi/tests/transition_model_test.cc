@@ -468,6 +468,55 @@ TEST(TransitionModel, ReportsAnAreaBeyondReachAsOutOfReach) {
   EXPECT_EQ(considered[0].starts, 0u);
 }
 
+// Rival hypotheses at one event: their queries weighed together give each
+// the outcomes and the reports it gets alone, to the bit, whatever the
+// threads. Here: the return to area 1 under a broad prior, the same
+// observations under another hypothesis's map (area 1 drawn elsewhere, so
+// out of reach) and prior, and observations nothing mapped.
+TEST(TransitionModel, AnEventsHypothesesWeighedTogetherGetWhatEachGetsAlone) {
+  ReturnToAreaOne r;
+  HmtMap other = r.s.map;
+  other.set_map(1, map_of(testing_sim::office_world(), Pose2D(-200, 0, 0), {{2, 2, 0}}));
+  const PoseGaussian narrow((Pose2D(3, 3, 0.2) - r.s.origin3) + Pose2D(0.1, 0.05, 0.02),
+                            diag(0.1, 0.05));
+  const auto corridor = observe(testing_sim::corridor_world(), {{10, 1.5, 0.0}, {10.5, 1.5, 0.0}});
+  const std::vector<TransitionModel::Query> queries = {
+      {&r.s.map, 3, r.robot, &r.obs},
+      {&other, 3, narrow, &r.obs},
+      {&r.s.map, 3, narrow, &r.obs},
+      {&r.s.map, 3, r.robot, &corridor}};
+  for (int threads : {1, 3}) {
+    auto pool = threads > 1 ? std::make_shared<WorkerPool>(threads) : nullptr;
+    TransitionModel together = model(10.0, TsbiOptions{}.bound_boxes, pool);
+    std::vector<std::vector<CandidateReport>> reports;
+    const auto all = together.evaluate_all(queries, &reports);
+    ASSERT_EQ(all.size(), queries.size());
+    ASSERT_EQ(reports.size(), queries.size());
+    for (size_t q = 0; q < queries.size(); ++q) {
+      SCOPED_TRACE("query " + std::to_string(q) + ", threads " + std::to_string(threads));
+      std::vector<CandidateReport> alone_reports;
+      const auto alone = model().evaluate(*queries[q].map, queries[q].current, queries[q].robot,
+                                          *queries[q].observations, &alone_reports);
+      expect_same_outcomes(alone, all[q]);
+      ASSERT_EQ(alone_reports.size(), reports[q].size());
+      for (size_t k = 0; k < alone_reports.size(); ++k) {
+        EXPECT_EQ(alone_reports[k].area, reports[q][k].area);
+        EXPECT_EQ(alone_reports[k].verdict, reports[q][k].verdict);
+        EXPECT_EQ(alone_reports[k].starts, reports[q][k].starts);
+        EXPECT_EQ(alone_reports[k].best_ratio, reports[q][k].best_ratio);
+        EXPECT_EQ(alone_reports[k].log_f, reports[q][k].log_f);
+      }
+    }
+    // The queries differ, so the test is not of four copies of one answer:
+    // the return is found under its own map, not where area 1 is drawn
+    // 200 m away, nor from the corridor.
+    ASSERT_GE(all[0].size(), 2u);
+    EXPECT_EQ(all[0][1].area, 1u);
+    EXPECT_EQ(reports[1][0].verdict, CandidateReport::Verdict::kOutOfReach);
+    EXPECT_EQ(all[3].size(), 1u);
+  }
+}
+
 TEST(TransitionModel, SameOutcomesWhateverTheThreads) {
   ReturnToAreaOne r;
   const auto alone = model().evaluate(r.s.map, 3, r.robot, r.obs);

@@ -166,11 +166,13 @@ class HybridFilter {
   // are ignored; a result older than the current step is carried forward
   // by each particle's own motion since the snapshot.
   std::vector<EventInput> prepare_event(const area::AreaDecision& decision) const;
-  // `considered`, if given: what TSBI made of every known area
-  // (tsbi::TransitionModel::evaluate), recorded in the event by
+  // The outcomes of every input of one event (out[i] for inputs[i]),
+  // weighed together (tsbi::TransitionModel::evaluate_all). `considered`,
+  // if given: what TSBI made of every known area, recorded in the event by
   // apply_event (considered[i] for inputs[i]).
-  std::vector<tsbi::Outcome> evaluate(const EventInput& input,
-                                      std::vector<tsbi::CandidateReport>* considered = nullptr) const;
+  std::vector<std::vector<tsbi::Outcome>> evaluate(
+      const std::vector<EventInput>& inputs,
+      std::vector<std::vector<tsbi::CandidateReport>>* considered = nullptr) const;
   void apply_event(const area::AreaDecision& decision, const std::vector<EventInput>& inputs,
                    const std::vector<std::vector<tsbi::Outcome>>& outcomes,
                    const std::vector<std::vector<tsbi::CandidateReport>>* considered = nullptr);

@@ -172,6 +172,23 @@ class TransitionModel {
                                 const Observations& obs,
                                 std::vector<CandidateReport>* considered = nullptr);
 
+  // One hypothesis's question at a new-area event: evaluate()'s arguments.
+  struct Query {
+    const topology::HmtMap* map = nullptr;
+    topology::AreaId current = topology::kNoArea;
+    topology::PoseGaussian robot;
+    const Observations* observations = nullptr;
+  };
+  // evaluate() for every hypothesis of one event at once: out[i] and
+  // (*considered)[i] are what evaluate() gives for queries[i], to the bit.
+  // The candidate areas of all the queries are one set of tasks on the
+  // pool, so that a hypothesis with one costly candidate (a wide search,
+  // an area check) does not leave a thread idle while the next waits: with
+  // rival hypotheses, each asks about the same few look-alike areas.
+  std::vector<std::vector<Outcome>> evaluate_all(
+      const std::vector<Query>& queries,
+      std::vector<std::vector<CandidateReport>>* considered = nullptr);
+
   ExpectedLikelihood expected_likelihood(const grid::OccupancyGrid& map,
                                          const topology::PoseGaussian& prior,
                                          const Observations& obs) const;
@@ -193,10 +210,10 @@ class TransitionModel {
                                        const topology::PoseGaussian& robot,
                                        const Observations& obs,
                                        std::vector<CandidateReport>* out_of_reach) const;
-  // The match field of each area's map: from the cache, or built (in
-  // parallel) and cached. Fields of maps no hypothesis holds are dropped.
+  // The match field of each map: from the cache, or built (in parallel)
+  // and cached. Fields of maps no hypothesis holds are dropped.
   std::vector<std::shared_ptr<const MatchField>> fields_for(
-      const topology::HmtMap& map, const std::vector<Outcome>& areas);
+      const std::vector<std::shared_ptr<const grid::OccupancyGrid>>& maps);
   // The cost stack of `map`'s match field `field`: from the cache, or built
   // and cached. Thread-safe: each searching thread asks for its own area's.
   std::shared_ptr<const CostStack> stack_for(const grid::OccupancyGrid* map,
