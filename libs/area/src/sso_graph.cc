@@ -23,8 +23,11 @@ SsoGraph::SsoGraph(const AreaOptions& options, std::shared_ptr<WorkerPool> pool)
 }
 
 void SsoGraph::use_pair_cache(std::shared_ptr<SsoPairCache> cache) {
-  if (cache && !nodes_.empty())
-    throw std::logic_error("SsoGraph::use_pair_cache: the graph already has keyframes");
+  if (cache)
+    for (const auto& [id, slot] : slot_of_)
+      if (!nodes_[slot].keyed)
+        throw std::logic_error("SsoGraph::use_pair_cache: keyframe " + std::to_string(id) +
+                               " was added without a cache (it has no key)");
   cache_ = std::move(cache);
 }
 
@@ -83,7 +86,10 @@ void SsoGraph::add(int id, const Keyframe& kf) {
   n.id = id;
   n.pose = kf.pose;
   n.scan = PreparedScan(kf.scan, options_.sso);
-  if (cache_) n.key = keyframe_key(kf, options_.sso);
+  if (cache_) {
+    n.key = keyframe_key(kf, options_.sso);
+    n.keyed = true;
+  }
   n.global.reserve(n.scan.size());
   for (const Point2D& p : n.scan.points())
     n.global.push_back(kf.pose.mean.transform(p));

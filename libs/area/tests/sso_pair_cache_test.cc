@@ -101,7 +101,11 @@ TEST(area_SsoPairCache, GraphsBuiltThroughTheCacheAreTheSame) {
   EXPECT_GT(cache->hits(), plain.num_edges() / 2);
 }
 
-TEST(area_SsoPairCache, OnlyAnEmptyGraphTakesACacheAndADetachedOneFillsNoMore) {
+// A cache needs every stored keyframe's key: a graph built with one cache
+// may go on with another (whose pairs then hold the new keyframes'), one
+// whose keyframes were added without a cache takes none; a detached cache
+// fills no more.
+TEST(area_SsoPairCache, ACacheIsTakenOnlyWhenEveryKeyframeHasItsKey) {
   const auto kfs = walk();
   auto cache = std::make_shared<SsoPairCache>();
   SsoGraph g(probabilistic());
@@ -109,12 +113,21 @@ TEST(area_SsoPairCache, OnlyAnEmptyGraphTakesACacheAndADetachedOneFillsNoMore) {
   for (int i = 0; i < 4; ++i) g.add(i, kfs[static_cast<size_t>(i)]);
   const size_t held = cache->size();
   EXPECT_GT(held, 0u);
-  EXPECT_THROW(g.use_pair_cache(std::make_shared<SsoPairCache>()), std::logic_error);
-  g.use_pair_cache(nullptr);
+  auto second = std::make_shared<SsoPairCache>();
+  g.use_pair_cache(second);  // every keyframe so far has its key
   g.add(4, kfs[4]);
+  EXPECT_EQ(cache->size(), held);
+  EXPECT_GT(second->size(), 0u);  // keyframe 4's pairs with 0-3
+  g.use_pair_cache(nullptr);
   g.add(5, kfs[5]);
   EXPECT_EQ(cache->size(), held);
-  EXPECT_GT(g.num_edges(), 4u);  // the later keyframes still got their edges
+  EXPECT_GT(g.num_edges(), 5u);  // the later keyframes still got their edges
+  // Keyframe 5 has no key: no cache can be looked up for its pairs.
+  EXPECT_THROW(g.use_pair_cache(cache), std::logic_error);
+  SsoGraph plain(probabilistic());
+  plain.add(0, kfs[0]);
+  EXPECT_THROW(plain.use_pair_cache(cache), std::logic_error);
+  plain.use_pair_cache(nullptr);  // detaching is always allowed
 }
 
 }  // namespace

@@ -7,10 +7,9 @@
 #include <map>
 #include <mutex>
 
-#include "hmt/area/ncut.h"
+#include "hmt/area/cut_off.h"
 #include "hmt/tsbi/bnb_matcher.h"
 #include "hmt/common/log_sum_exp.h"
-#include "hmt/area/sso_graph.h"
 #include "hmt/topology/shortest_paths.h"
 
 namespace hmt::tsbi {
@@ -307,8 +306,8 @@ std::vector<Pose2D> TransitionModel::bnb_search(const CostStack& stack, const Ma
 bool TransitionModel::same_area(const topology::Area& area, const Pose2D& robot,
                                 const Observations& obs) const {
   if (area.keyframes.empty() || obs.scans.empty()) return true;  // nothing to check with
-  // The area's keyframes nearest to the robot, then the latest scans placed
-  // at the mode; ids: area keyframes first.
+  // The area's keyframes nearest to the robot, against the latest scans
+  // placed at the mode.
   std::vector<size_t> order(area.keyframes.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   auto dist = [&](size_t i) {
@@ -320,20 +319,13 @@ bool TransitionModel::same_area(const topology::Area& area, const Pose2D& robot,
   if (order.size() > static_cast<size_t>(opt_.area_check_keyframes))
     order.resize(static_cast<size_t>(opt_.area_check_keyframes));
   std::sort(order.begin(), order.end());
-  area::SsoGraph graph(area_);
-  graph.use_pair_cache(area_check_pairs_);
-  int id = 0;
+  std::vector<area::Keyframe> keyframes;
   for (size_t i : order)
-    graph.add(id++, {area::PoseGaussian(area.keyframes[i].pose), area.keyframes[i].scan});
-  std::vector<char> in_latest(order.size(), 0);
-  // The latest scans' pairs are new at every event: not worth keeping.
-  graph.use_pair_cache(nullptr);
-  for (const PosedScan& ps : obs.scans) {
-    graph.add(id++, {area::PoseGaussian(robot + ps.pose), *ps.scan});
-    in_latest.push_back(1);
-  }
-  const area::WeightMatrix W = graph.weight_matrix(graph.ids());
-  return area::normalized_cut(W, in_latest) >= area_.partition.tau;
+    keyframes.push_back({area::PoseGaussian(area.keyframes[i].pose), area.keyframes[i].scan});
+  std::vector<area::Keyframe> latest;
+  for (const PosedScan& ps : obs.scans)
+    latest.push_back({area::PoseGaussian(robot + ps.pose), *ps.scan});
+  return !area::cut_off(keyframes, latest, area_, area_.partition.tau, area_check_pairs_);
 }
 
 ExpectedLikelihood TransitionModel::expected_likelihood(

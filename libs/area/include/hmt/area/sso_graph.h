@@ -61,11 +61,14 @@ class SsoGraph {
   explicit SsoGraph(const AreaOptions& options, std::shared_ptr<WorkerPool> pool = nullptr);
   // Probabilistic pairs are looked up in (and added to) `cache` before they
   // are computed: the same graph, with the pairs seen before not matched
-  // again (sso_pair_cache.h). A cache is taken only by an empty graph
-  // (std::logic_error otherwise): every node's key is taken when it is
-  // added. Null detaches it, so that the pairs of keyframes added from
-  // then on, which will not come back, do not fill it. Neither the cache
-  // nor the keys are checkpointed state.
+  // again (sso_pair_cache.h). A cache is taken only by a graph whose every
+  // keyframe was added with a cache attached (std::logic_error otherwise):
+  // a node's key is taken when it is added. So a graph may go from one
+  // cache to another (TSBI's area check: the area's keyframes' pairs in a
+  // lasting cache, the latest scans' in one of the check's own). Null
+  // detaches it, so that the pairs of keyframes added from then on, which
+  // will not come back, do not fill it. Neither the cache nor the keys are
+  // checkpointed state (a restored graph's keyframes have no keys).
   void use_pair_cache(std::shared_ptr<SsoPairCache> cache);
 
   // Adds the keyframe and its edges to every stored keyframe with SSO >=
@@ -112,6 +115,7 @@ class SsoGraph {
     PoseGaussian pose;
     PreparedScan scan;            // robot frame (probabilistic pairs)
     uint64_t key = 0;             // keyframe_key(), with a pair cache
+    bool keyed = false;           // `key` was set (added with a cache attached)
     std::vector<Point2D> global;  // scan points in the common frame
     Box box{0, 0, 0, 0};          // of `global`, grown by the reach
     std::vector<Adj> adj;
