@@ -13,20 +13,17 @@
 namespace hmt::area {
 namespace {
 
-AreaOptions probabilistic() {
-  AreaOptions o;
-  o.sso.use_probabilistic = true;
-  o.sso.range_std = 0.02;
-  o.index_cell_size = 3.0;
-  return o;
-}
-
-std::vector<Keyframe> walk() {
-  std::vector<Keyframe> out;
-  const auto all = sim::three_rooms_walk();
-  for (size_t i = 0; i < all.size(); i += 3) out.push_back(all[i]);
-  return out;
-}
+// The probabilistic SSO over a walk through three rooms, a keyframe every
+// 0.9 m.
+struct Walk {
+  AreaOptions options;
+  std::vector<Keyframe> keyframes = sim::three_rooms_walk(0.9);
+  Walk() {
+    options.sso.use_probabilistic = true;
+    options.sso.range_std = 0.02;
+    options.index_cell_size = 3.0;
+  }
+};
 
 // The Ncut of the whole graph, as the area check computed it before:
 // every pair matched, keyframes first.
@@ -52,8 +49,9 @@ double whole_ncut(const std::vector<Keyframe>& keyframes, const std::vector<Keyf
 // sides of each split's Ncut: the answer is the whole graph's, and where
 // the Ncut is well above tau the first latest scans settle it.
 TEST(area_CutOff, AnswersAsTheWholeGraphsNcutAndStopsEarlyWhereItCan) {
-  const AreaOptions o = probabilistic();
-  const auto kfs = walk();
+  const Walk w;
+  const AreaOptions& o = w.options;
+  const auto& kfs = w.keyframes;
   ASSERT_GE(kfs.size(), 30u);
   auto lasting = std::make_shared<SsoPairCache>();
   int stopped_early = 0, cut = 0, joined = 0;
@@ -88,12 +86,12 @@ TEST(area_CutOff, AnswersAsTheWholeGraphsNcutAndStopsEarlyWhereItCan) {
 }
 
 TEST(area_CutOff, NothingToCutWithoutKeyframesOrLatestScans) {
-  const auto kfs = walk();
-  const std::vector<Keyframe> some(kfs.begin(), kfs.begin() + 3);
+  const Walk w;
+  const std::vector<Keyframe> some(w.keyframes.begin(), w.keyframes.begin() + 3);
   size_t matched = 7;
-  EXPECT_FALSE(cut_off({}, some, probabilistic(), 0.5, nullptr, &matched));
+  EXPECT_FALSE(cut_off({}, some, w.options, 0.5, nullptr, &matched));
   EXPECT_EQ(matched, 0u);
-  EXPECT_FALSE(cut_off(some, {}, probabilistic(), 0.5));
+  EXPECT_FALSE(cut_off(some, {}, w.options, 0.5));
 }
 
 }  // namespace
