@@ -34,7 +34,6 @@ bool cut_off(const std::vector<Keyframe>& keyframes, const std::vector<Keyframe>
   among.use_pair_cache(latest_pairs);
   for (size_t j = 0; j < latest.size(); ++j)
     among.add(first_latest + static_cast<int>(j), latest[j]);
-  CutValues so_far;
   const double latest_degrees = degrees_sum(among);
   // A cache is needed for the latest scans' lookups, so the keyframes get
   // keys through one of this call's own when none lasts.
@@ -44,6 +43,7 @@ bool cut_off(const std::vector<Keyframe>& keyframes, const std::vector<Keyframe>
   const double keyframe_degrees = degrees_sum(graph);
   graph.use_pair_cache(latest_pairs);
   std::vector<char> in_latest(keyframes.size(), 0);
+  CutValues so_far;  // the cut by the latest scans added so far
   for (size_t j = 0; j < latest.size(); ++j) {
     const int id = first_latest + static_cast<int>(j);
     graph.add(id, latest[j]);

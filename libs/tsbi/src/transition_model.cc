@@ -639,9 +639,8 @@ std::vector<std::vector<Outcome>> TransitionModel::evaluate_all(
   // The known areas of every query, as tasks in (query, area id) order.
   struct Task {
     size_t query = 0;
-    Outcome area;
-    std::shared_ptr<const grid::OccupancyGrid> map;
-    const topology::Area* known = nullptr;
+    Outcome outcome;  // the area's id and prior; F and the pose once weighed
+    const topology::Area* area = nullptr;  // in the query's map
   };
   std::vector<Task> tasks;
   std::vector<std::vector<CandidateReport>> out_of_reach(queries.size());
@@ -650,8 +649,8 @@ std::vector<std::vector<Outcome>> TransitionModel::evaluate_all(
     for (Outcome& o : reachable_areas(*query.map, query.current, query.robot,
                                       *query.observations,
                                       considered ? &out_of_reach[q] : nullptr)) {
-      const topology::Area& area = query.map->area(o.area);
-      tasks.push_back({q, std::move(o), area.map, &area});
+      const topology::Area* area = &query.map->area(o.area);
+      tasks.push_back({q, std::move(o), area});
     }
   }
   const auto obs_of = [&](const Task& t) -> const Observations& {
@@ -681,19 +680,19 @@ std::vector<std::vector<Outcome>> TransitionModel::evaluate_all(
   for (size_t first = 0, end = 0; first < tasks.size(); first = end) {
     std::vector<std::shared_ptr<const grid::OccupancyGrid>> maps;
     for (size_t bytes = 0; end < tasks.size(); ++end) {
-      const size_t b = field_bytes_bound(*tasks[end].map);
+      const size_t b = field_bytes_bound(*tasks[end].area->map);
       if (end - first >= group && bytes + b > budget) break;
       bytes += b;
-      maps.push_back(tasks[end].map);
+      maps.push_back(tasks[end].area->map);
     }
     const auto fields = fields_for(maps);
     for_each_index(end - first, [&](size_t j) {
       const Task& t = tasks[first + j];
       Search& search = searches[first + j];
-      search = prepare_search(*t.map, *fields[j], t.area.prior, obs_of(t));
+      search = prepare_search(*t.area->map, *fields[j], t.outcome.prior, obs_of(t));
       std::shared_ptr<const CostStack> stack;
       if (search.wide && opt_.search == TsbiOptions::WideSearch::kBnb)
-        stack = stack_for(t.map.get(), fields[j]);
+        stack = stack_for(t.area->map.get(), fields[j]);
       add_wide_starts(&search, *fields[j], stack.get(), obs_of(t));
     });
   }
@@ -711,7 +710,7 @@ std::vector<std::vector<Outcome>> TransitionModel::evaluate_all(
   }
   for_each_index(jobs.size(), [&](size_t j) {
     const auto [i, k] = jobs[j];
-    matches[i][k] = match_from(*tasks[i].map, searches[i].starts[k], obs_of(tasks[i]));
+    matches[i][k] = match_from(*tasks[i].area->map, searches[i].starts[k], obs_of(tasks[i]));
   });
   std::vector<char> candidate(tasks.size(), 0);
   std::vector<CandidateReport> reports(considered ? tasks.size() : 0);
@@ -723,7 +722,7 @@ std::vector<std::vector<Outcome>> TransitionModel::evaluate_all(
     auto report = [&](V verdict) {
       if (!considered) return;
       CandidateReport& r = reports[i];
-      r = candidate_report(t.area.area, t.area.prior);
+      r = candidate_report(t.outcome.area, t.outcome.prior);
       r.verdict = verdict;
       r.wide = searches[i].wide;
       r.starts = static_cast<uint32_t>(searches[i].starts.size());
@@ -737,9 +736,9 @@ std::vector<std::vector<Outcome>> TransitionModel::evaluate_all(
     // worth the area check (a third of the Infinite Corridor's late
     // events went to checking such look-alikes).
     if (f.log_f < opt_.log_eta + std::log(opt_.min_probability)) return report(V::kImprobable);
-    if (opt_.area_check && !same_area(*t.known, f.robot.mean, obs)) return report(V::kAreaCheck);
+    if (opt_.area_check && !same_area(*t.area, f.robot.mean, obs)) return report(V::kAreaCheck);
     report(V::kOutcome);
-    Outcome& o = t.area;
+    Outcome& o = t.outcome;
     o.log_f = f.log_f;
     o.robot = f.robot;
     o.match_ratio = f.match_ratio;
@@ -750,7 +749,7 @@ std::vector<std::vector<Outcome>> TransitionModel::evaluate_all(
   std::vector<std::vector<Outcome>> out(queries.size(), std::vector<Outcome>(1));
   for (std::vector<Outcome>& outcomes : out) outcomes[0].log_f = opt_.log_eta;
   for (size_t i = 0; i < tasks.size(); ++i)
-    if (candidate[i]) out[tasks[i].query].push_back(std::move(tasks[i].area));
+    if (candidate[i]) out[tasks[i].query].push_back(std::move(tasks[i].outcome));
   for (std::vector<Outcome>& outcomes : out) {
     std::vector<double> lf;
     for (const Outcome& o : outcomes) lf.push_back(o.log_f);
