@@ -314,7 +314,8 @@ void serialize(A& ar, Particle& p) {
 }
 template <class A>
 void serialize(A& ar, RbpfStats& s) {
-  ar(s.steps, s.skipped_steps, s.resamplings, s.particle_moves, s.odometry_fallbacks);
+  ar(s.steps, s.skipped_steps, s.resamplings, s.particle_moves, s.odometry_fallbacks,
+     s.shared_starts);
 }
 template <class A>
 void serialize(A& ar, GridRbpf& f) {

@@ -42,6 +42,15 @@ void OccupancyGrid::grow_to_include(int tx, int ty) {
   nty_ = ny1 - ny0;
 }
 
+bool OccupancyGrid::shares_every_tile_with(const OccupancyGrid& o) const {
+  if (resolution_ != o.resolution_ || tx0_ != o.tx0_ || ty0_ != o.ty0_ || ntx_ != o.ntx_ ||
+      nty_ != o.nty_)
+    return false;
+  for (size_t i = 0; i < tiles_.size(); ++i)
+    if (tiles_[i] != o.tiles_[i]) return false;
+  return true;
+}
+
 Tile& OccupancyGrid::mutable_tile(int tx, int ty) {
   int ix = tx - tx0_, iy = ty - ty0_;
   if (ix < 0 || iy < 0 || ix >= ntx_ || iy >= nty_) {

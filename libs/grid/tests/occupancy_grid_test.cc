@@ -52,6 +52,24 @@ TEST(OccupancyGrid, CopiesShareTilesUntilWritten) {
   EXPECT_EQ(shared, a.tile_count() - 1);
 }
 
+// A copy shares every tile until one of the two is written; a grid of the
+// same cells built on its own shares none.
+TEST(OccupancyGrid, SharesEveryTileOnlyWithAnUnwrittenCopy) {
+  OccupancyGrid a(0.05), twin(0.05);
+  for (int i = 0; i < 200; ++i) a.mutable_logodds({i, i}) = twin.mutable_logodds({i, i}) = 5;
+  OccupancyGrid b = a;
+  EXPECT_TRUE(a.shares_every_tile_with(b));
+  EXPECT_TRUE(b.shares_every_tile_with(a));
+  EXPECT_FALSE(a.shares_every_tile_with(twin));
+  b.mutable_logodds({3, 3}) = 5;  // the same value, yet a tile of b's own now
+  EXPECT_FALSE(a.shares_every_tile_with(b));
+  OccupancyGrid c = a;
+  c.mutable_logodds({5000, 5000}) = 1;  // a new tile: the table grows
+  EXPECT_FALSE(a.shares_every_tile_with(c));
+  EXPECT_FALSE(a.shares_every_tile_with(OccupancyGrid(0.1)));
+  EXPECT_TRUE(OccupancyGrid(0.05).shares_every_tile_with(OccupancyGrid(0.05)));
+}
+
 TEST(OccupancyGrid, HitStatisticsOnlyInTilesThatWereHit) {
   // A fan of 10 m beams: the tiles around the arc of hits hold hit
   // statistics, the tiles the rays only cross do not (a quarter of the size).

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 
 #include "hmt/common/error.h"
 #include "hmt/common/log_sum_exp.h"
@@ -169,10 +170,44 @@ bool GridRbpf::begin_step(const LogStep& input) {
   st.fell_back.assign(particles_.size(), 0);
   st.before.resize(particles_.size());
   for (size_t i = 0; i < particles_.size(); ++i) st.before[i] = particles_[i].log_weight;
+  group_same_starts();
+  stats_.shared_starts += particles_.size() - pending_moves();
   return true;
 }
 
-size_t GridRbpf::pending_moves() const { return step_ ? particles_.size() : 0; }
+namespace {
+// The same pose to the bit (-0 and +0 apart: the match must see the very
+// numbers the other particle's saw).
+bool same_bits(const Pose2D& a, const Pose2D& b) {
+  return std::memcmp(&a.x, &b.x, sizeof a.x) == 0 && std::memcmp(&a.y, &b.y, sizeof a.y) == 0 &&
+         std::memcmp(&a.theta, &b.theta, sizeof a.theta) == 0;
+}
+}  // namespace
+
+void GridRbpf::group_same_starts() {
+  Step& st = *step_;
+  const size_t n = particles_.size();
+  // group_of[i]: the group particle i joins, numbered by first member.
+  std::vector<size_t> group_of(n), leaders;
+  for (size_t i = 0; i < n; ++i) {
+    const Particle& p = particles_[i];
+    size_t g = 0;
+    while (g < leaders.size() &&
+           !(same_bits(particles_[leaders[g]].pose, p.pose) &&
+             particles_[leaders[g]].map.shares_every_tile_with(p.map)))
+      ++g;
+    if (g == leaders.size()) leaders.push_back(i);
+    group_of[i] = g;
+  }
+  st.first.assign(leaders.size() + 1, 0);
+  for (size_t i = 0; i < n; ++i) ++st.first[group_of[i] + 1];
+  for (size_t g = 0; g < leaders.size(); ++g) st.first[g + 1] += st.first[g];
+  st.members.resize(n);
+  std::vector<size_t> next(st.first.begin(), st.first.end() - 1);
+  for (size_t i = 0; i < n; ++i) st.members[next[group_of[i]]++] = i;
+}
+
+size_t GridRbpf::pending_moves() const { return step_ ? step_->first.size() - 1 : 0; }
 
 Pose2D GridRbpf::search_headings(const Particle& p, const Pose2D& u, const ScanPoints& pts,
                                  const Pose2D& first, MatchScore* score) const {
@@ -208,41 +243,53 @@ Pose2D GridRbpf::search_headings(const Particle& p, const Pose2D& u, const ScanP
   return best;
 }
 
-void GridRbpf::move(size_t i) {
-  Step& st = *step_;
+void GridRbpf::move(size_t g) {
+  const Step& st = *step_;
+  const size_t begin = st.first.at(g), end = st.first.at(g + 1);
+  // The group's particles share pose and map: one proposal serves them all.
+  const Proposal prop = propose(particles_[st.members[begin]]);
+  for (size_t k = begin; k < end; ++k) place(st.members[k], prop);
+}
+
+GridRbpf::Proposal GridRbpf::propose(const Particle& p) const {
+  const Step& st = *step_;
   const ScanPoints& pts = st.pts;
+  const Pose2D& u = st.step.odometry_increment;
+  const size_t n = pts.hit.size();
+  Proposal out;
+  if (opt_.proposal != ProposalKind::kOptimal || n == 0) return out;
+  MatchScore ms;
+  out.mode = matcher_.optimize(p.map, p.pose + u, pts, &ms);
+  // A scan with too few beams to weigh particles by cannot tell heading
+  // basins apart either: a restart that lands one or two more far points
+  // on some tree wins the untempered target, and the particle turns by a
+  // tenth of a radian on no evidence.
+  if (st.can_weigh && ms.matched < opt_.heading_search_ratio * static_cast<double>(n))
+    out.mode = search_headings(p, u, pts, out.mode, &ms);
+  if (!opt_.matcher.tracks(ms.matched, n)) return out;
+  out.lattice = evaluate_lattice(p.map, p.pose, u, st.lattice_pts, st.lattice_scale, out.mode,
+                                 st.sample_angular);
+  out.ok = out.lattice.ok;
+  if (out.ok) out.cov_factor = out.lattice.cov.llt().matrixL();
+  return out;
+}
+
+void GridRbpf::place(size_t i, const Proposal& prop) {
+  Step& st = *step_;
   Particle& p = particles_[i];
   Random rng(mix_seed(st.seed ^ (i * 0x632be59bd9b4e019ULL)));
   const Pose2D& u = st.step.odometry_increment;
-  const size_t n = pts.hit.size();
-  bool fallback = true;
+  const bool fallback = !prop.ok;
   Pose2D estimate;  // the proposal's mean, where the scan was matched
 
-  if (opt_.proposal == ProposalKind::kOptimal && n > 0) {
-    MatchScore ms;
-    Pose2D mode = matcher_.optimize(p.map, p.pose + u, pts, &ms);
-    // A scan with too few beams to weigh particles by cannot tell heading
-    // basins apart either: a restart that lands one or two more far points
-    // on some tree wins the untempered target, and the particle turns by a
-    // tenth of a radian on no evidence.
-    if (st.can_weigh && ms.matched < opt_.heading_search_ratio * static_cast<double>(n))
-      mode = search_headings(p, u, pts, mode, &ms);
-    if (opt_.matcher.tracks(ms.matched, n)) {
-      const Lattice lat =
-          evaluate_lattice(p.map, p.pose, u, st.lattice_pts, st.lattice_scale, mode,
-                           st.sample_angular);
-      if (lat.ok) {
-        const Eigen::Matrix3d L = lat.cov.llt().matrixL();
-        const Eigen::Vector3d z(rng.normal(), rng.normal(), rng.normal());
-        p.pose = perturbed(mode, lat.mean + L * z);
-        estimate = perturbed(mode, lat.mean);
-        p.log_weight += lat.log_eta;
-        p.path_log_weight += lat.log_eta;
-        fallback = false;
-      }
-    }
-  }
-  if (fallback) {
+  if (!fallback) {
+    const Lattice& lat = prop.lattice;
+    const Eigen::Vector3d z(rng.normal(), rng.normal(), rng.normal());
+    p.pose = perturbed(prop.mode, lat.mean + prop.cov_factor * z);
+    estimate = perturbed(prop.mode, lat.mean);
+    p.log_weight += lat.log_eta;
+    p.path_log_weight += lat.log_eta;
+  } else {
     // Odometry proposal. The weight is the same lattice estimate of the
     // normaliser, taken around the sampled pose, so that particles on either
     // proposal stay comparable.
@@ -264,7 +311,7 @@ void GridRbpf::move(size_t i) {
     const Pose2D from = p.pose;
     const bool dead_reckon = opt_.proposal == ProposalKind::kOptimal && !st.can_weigh;
     p.pose = dead_reckon ? from + u : motion_.sample(from, u, rng);
-    if (n > 0) {
+    if (!st.pts.hit.empty()) {
       const Lattice lat =
           evaluate_lattice(p.map, from, u, st.lattice_pts, st.lattice_scale, p.pose,
                            st.sample_angular);

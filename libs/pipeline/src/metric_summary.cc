@@ -10,6 +10,7 @@ nlohmann::json metric_summary(const metric_slam::RbpfStats& s) {
           {"resamplings", s.resamplings},
           {"particle_moves", s.particle_moves},
           {"odometry_fallbacks", s.odometry_fallbacks},
+          {"shared_starts", s.shared_starts},
           {"odometry_fallback_fraction",
            moves > 0 ? static_cast<double>(s.odometry_fallbacks) / moves : 0.0}};
 }

@@ -161,6 +161,11 @@ class OccupancyGrid {
   // Bounds of the cells in allocated tiles: [min, max] inclusive. False if empty.
   bool bounds(CellIndex* min, CellIndex* max) const;
 
+  // Whether this grid holds the very tiles of `o`, laid out alike: a copy
+  // that neither grid has written since. Every cell then reads the same in
+  // both (a shared tile is cloned before it is written).
+  bool shares_every_tile_with(const OccupancyGrid& o) const;
+
   // Tiles this grid points to, and the bytes they would take if unshared.
   size_t tile_count() const;
   size_t tile_bytes() const;

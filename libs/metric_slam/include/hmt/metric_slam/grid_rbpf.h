@@ -64,6 +64,10 @@ struct RbpfStats {
   size_t resamplings = 0;
   size_t particle_moves = 0;      // particle-steps filtered (a particle moved by a scan)
   size_t odometry_fallbacks = 0;  // of which matching failed
+  // Particle moves that began at another particle's pose on the same map
+  // (copies after a resampling, a new area or a closure's single pose):
+  // the match and its lattice were the other's (GridRbpf::move()).
+  size_t shared_starts = 0;
 };
 
 // A seed scan for a new area's map: the scan taken at `path_index` of the
@@ -96,6 +100,12 @@ class GridRbpf {
   // if the particles must move; then move(i) for every i < pending_moves(),
   // from any threads, each i once; then end_step() weighs and resamples.
   // The result is process()'s, whatever the order of the moves.
+  //
+  // A move is that of one group of particles that start from the same pose
+  // on the same map (shared tiles): copies made by a resampling, or every
+  // particle after a new area. Matching and the proposal's lattice depend
+  // on nothing else, so the group computes them once; each particle still
+  // draws its pose from its own random stream.
   bool begin_step(const LogStep& step);
   size_t pending_moves() const;
   void move(size_t i);
@@ -174,6 +184,22 @@ class GridRbpf {
   // motion prior, its score in *score.
   Pose2D search_headings(const Particle& p, const Pose2D& u, const ScanPoints& pts,
                          const Pose2D& first, MatchScore* score) const;
+  // The near-optimal proposal of a particle for the step under way: the
+  // scan match and the Gaussian fitted on the lattice around it. Not `ok`
+  // when the scan has no beams, does not match or the lattice fails; the
+  // particle then moves by the odometry.
+  struct Proposal {
+    bool ok = false;
+    Pose2D mode;
+    Lattice lattice;
+    Eigen::Matrix3d cov_factor;  // the lattice covariance's Cholesky factor L
+  };
+  Proposal propose(const Particle& p) const;
+  // Moves particle i by `prop` (drawn from it, or by the odometry if not ok).
+  void place(size_t i, const Proposal& prop);
+  // Groups the particles that start from one pose on one map, into the
+  // step under way's members and first.
+  void group_same_starts();
   void initialise(const LogStep& step);
   void maybe_insert(Particle& p, const LaserScan& scan);
   // Whether the last scan at `pose` matches enough of `map` for a particle's
@@ -194,6 +220,9 @@ class GridRbpf {
     // that cannot moves by the odometry alone.
     bool can_weigh = true;
     uint64_t seed = 0;            // the particles' streams derive from it
+    // The particles in groups of the same start, each group's in order:
+    // group g is members[first[g]] .. members[first[g + 1] - 1].
+    std::vector<size_t> members, first;
     std::vector<char> fell_back;  // per particle: odometry proposal used
     std::vector<double> before;   // log weights before the step
   };

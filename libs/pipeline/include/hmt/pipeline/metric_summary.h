@@ -10,8 +10,9 @@
 
 namespace hmt::pipeline {
 
-// scans_filtered, resamplings, particle_moves, odometry_fallbacks and
-// odometry_fallback_fraction (fallbacks / moves; 0 with no moves).
+// scans_filtered, resamplings, particle_moves, odometry_fallbacks,
+// shared_starts and odometry_fallback_fraction (fallbacks / moves; 0 with
+// no moves).
 nlohmann::json metric_summary(const metric_slam::RbpfStats& s);
 
 // Most particle-steps moved by the odometry alone (fraction above one
