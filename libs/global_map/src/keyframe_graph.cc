@@ -510,16 +510,19 @@ class Graph {
     past.swap(past_[i]);
     // The scan's points, prepared once for all the areas (their grids share
     // a resolution; prepared again for one that does not).
-    metric_slam::ScanPoints pts;
+    std::optional<metric_slam::MatchScan> ready;
     double pts_resolution = 0.0;
     for (size_t a = 0; a < A; ++a) {
       if (area_ids_[a] == nodes_[i].area && !own_areas) continue;
       if (!boxes[a] || !boxes[a]->holds(g)) continue;
       const grid::OccupancyGrid& grid = *map_.area(area_ids_[a]).map;
       if (grid.resolution() != pts_resolution) {
-        pts = metric_slam::prepare_scan(step->scan, mo.max_range, mo.beam_skip, grid.resolution());
+        ready.emplace(
+            metric_slam::prepare_scan(step->scan, mo.max_range, mo.beam_skip, grid.resolution()),
+            mo);
         pts_resolution = grid.resolution();
       }
+      const metric_slam::ScanPoints& pts = ready->points();
       if (pts.hit.empty()) continue;
       ++*tried;
       const Pose2D guess = x_[a].inverse() + g;
@@ -531,7 +534,7 @@ class Graph {
         match = {static_cast<int>(a), guess, Pose2D(), std::nullopt};
         metric_slam::MatchScore score;
         Eigen::Matrix3d hessian;
-        match.result = matcher_.optimize(grid, guess, pts, &score, &hessian);
+        match.result = matcher_.optimize(grid, guess, *ready, &score, &hessian);
         if (score.matched >= opt_.match_min_ratio * static_cast<double>(pts.hit.size()))
           match.information = match_information(hessian, opt_);
       }

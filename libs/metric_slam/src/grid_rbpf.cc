@@ -146,6 +146,7 @@ bool GridRbpf::begin_step(const LogStep& input) {
   st.lattice_scale = st.lattice_pts.hit.empty()
                          ? 1.0
                          : static_cast<double>(st.pts.hit.size()) / st.lattice_pts.hit.size();
+  st.match.emplace(st.pts, opt_.matcher);
   st.seed = mix_seed(opt_.seed ^ mix_seed(stats_.steps));
   // Where the match's heading basin is narrower than the hill climbing's
   // steps (far returns only, outdoors), it is narrower than the lattice's
@@ -154,7 +155,7 @@ bool GridRbpf::begin_step(const LogStep& input) {
   // the sampled pose keeps whatever heading error the match left. There the
   // lattice's headings are one basin (of the fine window) apart.
   st.sample_angular = opt_.sample_angular;
-  const double far = far_range(st.pts);
+  const double far = st.match->far();
   if (matcher_.steps_over_heading_basin(far, opt_.resolution))
     st.sample_angular = std::min(
         st.sample_angular, ScanMatcher::heading_basin(far, opt_.matcher.window, opt_.resolution));
@@ -209,7 +210,7 @@ void GridRbpf::group_same_starts() {
 
 size_t GridRbpf::pending_moves() const { return step_ ? step_->first.size() - 1 : 0; }
 
-Pose2D GridRbpf::search_headings(const Particle& p, const Pose2D& u, const ScanPoints& pts,
+Pose2D GridRbpf::search_headings(const Particle& p, const Pose2D& u, const MatchScan& scan,
                                  const Pose2D& first, MatchScore* score) const {
   const double step = 2.0 * opt_.matcher.angular_step;
   if (!(opt_.heading_search_range >= step) || !(step > 0)) return first;
@@ -226,7 +227,7 @@ Pose2D GridRbpf::search_headings(const Particle& p, const Pose2D& u, const ScanP
     for (int sign : {1, -1}) {
       const Pose2D start(guess.x, guess.y, wrap_angle(guess.theta + sign * k * step));
       MatchScore s;
-      const Pose2D m = matcher_.optimize(p.map, start, pts, &s);
+      const Pose2D m = matcher_.optimize(p.map, start, scan, &s);
       // A restart that climbs back to within one search step of the first
       // match found the same basin, refined: the hill climbing's own steps
       // settle that. Only another basin (a turn the odometry got wrong)
@@ -259,13 +260,13 @@ GridRbpf::Proposal GridRbpf::propose(const Particle& p) const {
   Proposal out;
   if (opt_.proposal != ProposalKind::kOptimal || n == 0) return out;
   MatchScore ms;
-  out.mode = matcher_.optimize(p.map, p.pose + u, pts, &ms);
+  out.mode = matcher_.optimize(p.map, p.pose + u, *st.match, &ms);
   // A scan with too few beams to weigh particles by cannot tell heading
   // basins apart either: a restart that lands one or two more far points
   // on some tree wins the untempered target, and the particle turns by a
   // tenth of a radian on no evidence.
   if (st.can_weigh && ms.matched < opt_.heading_search_ratio * static_cast<double>(n))
-    out.mode = search_headings(p, u, pts, out.mode, &ms);
+    out.mode = search_headings(p, u, *st.match, out.mode, &ms);
   if (!opt_.matcher.tracks(ms.matched, n)) return out;
   out.lattice = evaluate_lattice(p.map, p.pose, u, st.lattice_pts, st.lattice_scale, out.mode,
                                  st.sample_angular);

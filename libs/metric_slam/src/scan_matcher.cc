@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 
 #include "hmt/common/error.h"
 #include "hmt/common/pose_gaussian.h"
@@ -86,6 +87,11 @@ void MatcherOptions::load(Config& cfg, const std::string& s) {
   require(min_match_ratio >= 0 && min_match_ratio <= 1, s, "min_match_ratio",
           "in [0, 1]");
 }
+
+MatchScan::MatchScan(ScanPoints points, const MatcherOptions& opt)
+    : points_(std::move(points)),
+      coarse_(spread_subset(points_, opt.coarse_beams)),
+      far_(far_range(points_)) {}
 
 ScanMatcher::ScanMatcher(const MatcherOptions& opt) : opt_(opt) {
   occ_threshold_ = grid::scaled_logit(opt.occupied_probability);
@@ -368,8 +374,15 @@ bool ScanMatcher::gauss_newton_step(const Eigen::Matrix3d& H, const Eigen::Vecto
 Pose2D ScanMatcher::optimize(const grid::OccupancyGrid& map, const Pose2D& start,
                              const ScanPoints& scan, MatchScore* best_out,
                              Eigen::Matrix3d* information_out) const {
+  return optimize(map, start, MatchScan(scan, opt_), best_out, information_out);
+}
+
+Pose2D ScanMatcher::optimize(const grid::OccupancyGrid& map, const Pose2D& start,
+                             const MatchScan& ready, MatchScore* best_out,
+                             Eigen::Matrix3d* information_out) const {
+  const ScanPoints& scan = ready.points();
   // Coarse: an evenly spread subset of the beams.
-  const ScanPoints coarse = spread_subset(scan, opt_.coarse_beams);
+  const ScanPoints& coarse = ready.coarse();
   // Far returns only (outdoors): the climb's heading moves step over the
   // basin the far points leave, and from a start a few mrad off it trades
   // the heading error for a sideways one fitted to the near points. So the
@@ -379,7 +392,7 @@ Pose2D ScanMatcher::optimize(const grid::OccupancyGrid& map, const Pose2D& start
   // start farther off than the sweep reaches (a turn) is the climb's own.
   double best_ll = 0.0;
   Pose2D best = hill_climb(map, start, coarse, opt_.coarse_window, &best_ll);
-  const double far = far_range(scan);
+  const double far = ready.far();
   if (steps_over_heading_basin(far, map.resolution())) {
     double swept_ll = 0.0;
     const Pose2D swept = hill_climb(

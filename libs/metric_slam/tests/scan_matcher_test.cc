@@ -35,6 +35,40 @@ TEST(ScanMatcher, RecoversAKnownOffset) {
   EXPECT_GT(at_end.matched, static_cast<int>(pts.hit.size() * 0.9));
 }
 
+// A scan made ready once matches from every start exactly as its points do
+// matched one at a time; it holds the climb's subset and the far range.
+TEST(ScanMatcher, AScanMadeReadyOnceMatchesAsItsPoints) {
+  const auto world = testing_sim::office_world();
+  grid::OccupancyGrid map(0.05);
+  const Pose2D truth(4.0, 3.0, 0.3);
+  grid::insert_scan(map, truth, testing_sim::cast_scan(world, truth, 361, M_PI, 30, nullptr, 0),
+                    grid::InsertionOptions());
+  MatcherOptions opt;
+  opt.coarse_beams = 25;
+  ScanMatcher m(opt);
+  Random rng(4);
+  const ScanPoints pts = prepare_scan(
+      testing_sim::cast_scan(world, truth, 181, M_PI, 30, &rng, 0.01), opt.max_range, 0, 0.05);
+  const MatchScan ready(pts, opt);
+  EXPECT_EQ(ready.points().hit.size(), pts.hit.size());
+  EXPECT_EQ(ready.coarse().hit.size(), spread_subset(pts, 25).hit.size());
+  EXPECT_LE(ready.coarse().hit.size(), 25u);
+  EXPECT_EQ(ready.far(), far_range(pts));
+  for (const Pose2D& start : {Pose2D(4.1, 2.9, 0.33), Pose2D(3.9, 3.05, 0.25),
+                              Pose2D(4.0, 3.2, 0.4)}) {
+    MatchScore a, b;
+    Eigen::Matrix3d ia, ib;
+    const Pose2D pa = m.optimize(map, start, pts, &a, &ia);
+    const Pose2D pb = m.optimize(map, start, ready, &b, &ib);
+    EXPECT_EQ(pa.x, pb.x);
+    EXPECT_EQ(pa.y, pb.y);
+    EXPECT_EQ(pa.theta, pb.theta);
+    EXPECT_EQ(a.log_likelihood, b.log_likelihood);
+    EXPECT_EQ(a.matched, b.matched);
+    EXPECT_EQ(ia, ib);
+  }
+}
+
 TEST(ScanPoints, FarRangeIsTheRangeThreeQuartersOfThePointsLieWithin) {
   ScanPoints pts;
   EXPECT_EQ(far_range(pts), 0.0);

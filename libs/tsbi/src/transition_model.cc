@@ -388,10 +388,10 @@ std::shared_ptr<const CostStack> TransitionModel::make_stack(const MatchField& f
 }
 
 TransitionModel::Match TransitionModel::match_from(const grid::OccupancyGrid& map,
-                                                   const Pose2D& start,
-                                                   const Observations& obs) const {
+                                                   const Pose2D& start, const Observations& obs,
+                                                   const metric_slam::MatchScan& ready) const {
   Match m;
-  m.pose = matcher_.optimize(map, start, obs.points, &m.score, &m.information);
+  m.pose = matcher_.optimize(map, start, ready, &m.score, &m.information);
   // Only a match that explains min_points_explained of the points reaches
   // the ratio gate's count within the extent (sum_modes).
   if (share_explained(m.score, obs.points.hit.size()) >= opt_.min_points_explained) {
@@ -476,7 +476,8 @@ ExpectedLikelihood TransitionModel::expected_likelihood(
   if (search.wide && opt_.search == TsbiOptions::WideSearch::kBnb) stack = make_stack(field);
   add_wide_starts(&search, field, stack.get(), obs);
   std::vector<Match> matches;
-  for (const Pose2D& start : search.starts) matches.push_back(match_from(map, start, obs));
+  const metric_slam::MatchScan ready(obs.points, matcher_.options());
+  for (const Pose2D& start : search.starts) matches.push_back(match_from(map, start, obs, ready));
   return sum_modes(search, matches, obs);
 }
 
@@ -708,9 +709,13 @@ std::vector<std::vector<Outcome>> TransitionModel::evaluate_all(
     matches[i].resize(searches[i].starts.size());
     for (size_t k = 0; k < searches[i].starts.size(); ++k) jobs.emplace_back(i, k);
   }
+  std::vector<metric_slam::MatchScan> ready;
+  ready.reserve(queries.size());
+  for (const Query& query : queries) ready.emplace_back(query.observations->points, matcher_.options());
   for_each_index(jobs.size(), [&](size_t j) {
     const auto [i, k] = jobs[j];
-    matches[i][k] = match_from(*tasks[i].area->map, searches[i].starts[k], obs_of(tasks[i]));
+    matches[i][k] = match_from(*tasks[i].area->map, searches[i].starts[k], obs_of(tasks[i]),
+                               ready[tasks[i].query]);
   });
   std::vector<char> candidate(tasks.size(), 0);
   std::vector<CandidateReport> reports(considered ? tasks.size() : 0);

@@ -182,7 +182,7 @@ class GridRbpf {
   // the matches started at headings around the guess
   // ([metric_slam] heading_search_range): the one of highest likelihood x
   // motion prior, its score in *score.
-  Pose2D search_headings(const Particle& p, const Pose2D& u, const ScanPoints& pts,
+  Pose2D search_headings(const Particle& p, const Pose2D& u, const MatchScan& scan,
                          const Pose2D& first, MatchScore* score) const;
   // The near-optimal proposal of a particle for the step under way: the
   // scan match and the Gaussian fitted on the lattice around it. Not `ok`
@@ -213,6 +213,7 @@ class GridRbpf {
   struct Step {
     LogStep step;  // with the odometry accumulated since the last filtered scan
     ScanPoints pts, lattice_pts;
+    std::optional<MatchScan> match;  // pts made ready for the matcher
     double lattice_scale = 1.0;
     double sample_angular = 0.0;  // the lattice's heading spacing for this scan
     // Whether the scan has beams enough for its weights to tell particles

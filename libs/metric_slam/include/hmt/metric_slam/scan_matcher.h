@@ -51,6 +51,22 @@ struct MatcherOptions {
   void load(Config& cfg, const std::string& section = "scan_matcher");
 };
 
+// A scan made ready for ScanMatcher::optimize() once, for any number of
+// matches from any starts in any maps: its points, the evenly spread subset
+// the hill climbing runs on (coarse_beams) and the range of its far points
+// (far_range()).
+class MatchScan {
+ public:
+  MatchScan(ScanPoints points, const MatcherOptions& opt);
+  const ScanPoints& points() const { return points_; }
+  const ScanPoints& coarse() const { return coarse_; }
+  double far() const { return far_; }
+
+ private:
+  ScanPoints points_, coarse_;
+  double far_;
+};
+
 struct MatchScore {
   double log_likelihood = 0.0;  // sum over beams of -d^2 / (2 sigma^2)
   int matched = 0;              // beams with an obstacle in the window
@@ -82,6 +98,10 @@ class ScanMatcher {
   // -log p(z|x,m) at the result, J^T J / sigma^2 over the beams matched
   // there (point-to-hit-mean residuals): how sharply the scan pins the pose
   // down. The last Gauss-Newton pass has already summed it.
+  Pose2D optimize(const grid::OccupancyGrid& map, const Pose2D& start,
+                  const MatchScan& scan, MatchScore* best,
+                  Eigen::Matrix3d* information = nullptr) const;
+  // The same for a scan matched once (made ready here).
   Pose2D optimize(const grid::OccupancyGrid& map, const Pose2D& start,
                   const ScanPoints& scan, MatchScore* best,
                   Eigen::Matrix3d* information = nullptr) const;

@@ -251,8 +251,10 @@ class TransitionModel {
   // field's cost stack (the branch and bound only).
   void add_wide_starts(Search* search, const MatchField& field, const CostStack* stack,
                        const Observations& obs) const;
-  Match match_from(const grid::OccupancyGrid& map, const Pose2D& start,
-                   const Observations& obs) const;
+  // The match from `start` of the observations, `ready` their points made
+  // ready for the matcher (once for all of a query's starts).
+  Match match_from(const grid::OccupancyGrid& map, const Pose2D& start, const Observations& obs,
+                   const metric_slam::MatchScan& ready) const;
   // The ratio gate: the match explains min_match_ratio of its points within
   // the known area's extent (a matched point may lie up to the matcher's
   // window outside it).
