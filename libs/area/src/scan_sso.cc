@@ -84,7 +84,10 @@ double scan_match_ratio(const PreparedScan& a, const PoseGaussian& pose_a,
       //   R^2 = gate (lp + c0 + k (rho + R)^2).
       const double g = options.gate, k = b.var_per_range2();
       if (g * k < 1.0) {
-        const double rho = std::hypot(p.x - b.sensor_origin().x, p.y - b.sensor_origin().y);
+        // sqrt rather than std::hypot (a slow libm call per point): no
+        // overflow to guard against at a scan's ranges.
+        const double ox = p.x - b.sensor_origin().x, oy = p.y - b.sensor_origin().y;
+        const double rho = std::sqrt(ox * ox + oy * oy);
         const double a0 = lp + b.var_floor();
         const double bh = g * k * rho;
         const double R =
