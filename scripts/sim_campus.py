@@ -98,13 +98,17 @@ def drive(rng):
     return np.array(poses)
 
 
-def bearings(fov):
-    """The beams' bearings in the sensor frame (rad), one a degree."""
-    return np.radians(np.arange(181) - 90.0) if fov == 180 else np.radians(np.arange(360) - 180.0)
+def bearings(fov, per_degree=1):
+    """The beams' bearings in the sensor frame (rad), `per_degree` a degree:
+    from -90 to +90 degrees both included (fov 180), or a full turn from
+    -180 (fov 360)."""
+    if fov == 180:
+        return np.radians(np.arange(180 * per_degree + 1) / per_degree - 90.0)
+    return np.radians(np.arange(360 * per_degree) / per_degree - 180.0)
 
 
-def raycast(S, x, y, th, rng, fov):
-    ang = th + bearings(fov)
+def raycast(S, x, y, th, rng, fov, per_degree=1):
+    ang = th + bearings(fov, per_degree)
     dx, dy = np.cos(ang), np.sin(ang)
     near = np.minimum(np.hypot(S[:, 0] - x, S[:, 1] - y), np.hypot(S[:, 2] - x, S[:, 3] - y)) < MAX_RANGE + 100
     s = S[near]
@@ -140,25 +144,26 @@ def odometry(poses, rng, harsh):
     return odo
 
 
-def write_log(out, segs, poses, odo, rng, fov, period):
+def write_log(out, segs, poses, odo, rng, fov, period, per_degree=1):
     """Writes OUT.log.gz (a scan of `segs` from each true pose, with its
-    odometry; FLASER lines, or ROBOTLASER1 for fov 360) and
-    OUT.reference.txt.gz (the true poses), one scan every `period` seconds;
-    returns the path's length (m)."""
+    odometry, `per_degree` beams a degree; FLASER lines for fov 180 at one a
+    degree, else ROBOTLASER1) and OUT.reference.txt.gz (the true poses), one
+    scan every `period` seconds; returns the path's length (m)."""
     with gzip.open(out + ".log.gz", "wt") as f, gzip.open(out + ".reference.txt.gz", "wt") as g:
         for k, (x, y, th) in enumerate(poses):
-            r = raycast(segs, x, y, th, rng, fov)
+            r = raycast(segs, x, y, th, rng, fov, per_degree)
             o = odo[k]
             ot = math.atan2(math.sin(o[2]), math.cos(o[2]))
             t = 100.0 + period * k
             ranges = " ".join("%.3f" % v for v in r)
-            if fov == 180:
+            if fov == 180 and per_degree == 1:
                 f.write("FLASER 181 " + ranges +
                         " %.4f %.4f %.5f %.4f %.4f %.5f %.3f sim %.3f\n" % (o[0], o[1], ot, o[0], o[1], ot, t, t))
-            else:  # a full turn: ROBOTLASER1, which states its first bearing and step
+            else:  # ROBOTLASER1, which states its first bearing and step
                 f.write("ROBOTLASER1 0 %.6f %.6f %.6f %.1f 0.01 0 %d %s 0"
                         " %.4f %.4f %.5f %.4f %.4f %.5f 0 0 0 0 0 %.3f sim %.3f\n"
-                        % (-math.pi, 2 * math.pi, math.radians(1), MAX_RANGE, len(r), ranges,
+                        % (-math.radians(fov / 2), math.radians(fov),
+                           math.radians(1.0 / per_degree), MAX_RANGE, len(r), ranges,
                            o[0], o[1], ot, o[0], o[1], ot, t, t))
             g.write("%.3f %.4f %.4f %.5f\n" % (t, x, y, math.atan2(math.sin(th), math.cos(th))))
     return float(np.sum(np.hypot(*np.diff(poses[:, :2], axis=0).T)))
@@ -172,13 +177,17 @@ def main():
     ap.add_argument("--fov", type=int, choices=(180, 360), default=180,
                     help="the laser's field of view (degrees): 180 (FLASER lines) or "
                          "360 (ROBOTLASER1 lines), a beam a degree")
+    ap.add_argument("--beams-per-degree", type=int, default=1,
+                    help="the laser's beams a degree (4: a 0.25 degree scanner)")
     a = ap.parse_args()
+    if a.beams_per_degree < 1:
+        ap.error("--beams-per-degree must be at least 1")
     rng = np.random.default_rng(a.seed)
     harsh = a.odometry == "harsh"
     S = world(rng, harsh)
     poses = drive(rng)
     odo = odometry(poses, rng, harsh)
-    length = write_log(a.out, S, poses, odo, rng, a.fov, 2.0)
+    length = write_log(a.out, S, poses, odo, rng, a.fov, 2.0, a.beams_per_degree)
     print("%d scans, %d wall segments, path %.0f m: %s.log.gz, %s.reference.txt.gz"
           % (len(poses), len(S), length, a.out, a.out))
 

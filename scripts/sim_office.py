@@ -180,14 +180,18 @@ def main():
     ap.add_argument("--odometry", choices=("fair", "harsh"), default="fair")
     ap.add_argument("--length", type=float, default=2000.0,
                     help="the walk's length (m) before it stops, at the next crossing")
+    ap.add_argument("--beams-per-degree", type=int, default=1,
+                    help="the laser's beams a degree (4: a 0.25 degree scanner)")
     a = ap.parse_args()
+    if a.beams_per_degree < 1:
+        ap.error("--beams-per-degree must be at least 1")
     if not a.length > 0:
         ap.error("--length must be positive")
     rng = np.random.default_rng(a.seed)
     floor = Floor(rng)
     poses = walk(floor, rng, a.length)
     odo = odometry(poses, rng, a.odometry == "harsh")
-    path = write_log(a.out, floor.segs, poses, odo, rng, 180, 0.5)
+    path = write_log(a.out, floor.segs, poses, odo, rng, 180, 0.5, a.beams_per_degree)
     print("%d scans, %d wall segments, %d open doors, path %.0f m: %s.log.gz, %s.reference.txt.gz"
           % (len(poses), len(floor.segs), len(floor.doors), path, a.out, a.out))
 
