@@ -12,11 +12,15 @@ Odometry: each step's motion with its translation scaled by 1 + s + noise
 (s = 1 % fair, 2 % harsh), lateral noise, heading noise, and a heading drift
 of 0.001 (fair) or 0.004 (harsh) rad per metre.
 
-Outputs OUT.log.gz (CARMEN FLASER lines; ROBOTLASER1 with --fov 360) and
-OUT.reference.txt.gz (the true poses, "t x y theta" per scan, for
-scripts/ate.py).
+--beams-per-degree N: N beams a degree instead of one (4: a 0.25 degree
+scanner).
+
+Outputs OUT.log.gz (CARMEN FLASER lines; ROBOTLASER1 with --fov 360 or
+more than a beam a degree) and OUT.reference.txt.gz (the true poses,
+"t x y theta" per scan, for scripts/ate.py).
 
 Usage: sim_campus.py OUT [--seed N] [--odometry fair|harsh] [--fov 180|360]
+                     [--beams-per-degree N]
 """
 import argparse
 import gzip

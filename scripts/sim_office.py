@@ -22,6 +22,7 @@ Outputs OUT.log.gz (CARMEN FLASER lines) and OUT.reference.txt.gz (the true
 poses, "t x y theta" per scan, for scripts/ate.py).
 
 Usage: sim_office.py OUT [--seed N] [--odometry fair|harsh] [--length M]
+                     [--beams-per-degree N]
 """
 import argparse
 import math
