@@ -138,15 +138,16 @@ bool GridRbpf::begin_step(const LogStep& input) {
   st.step.odometry_increment = pending_motion_;
   pending_motion_ = Pose2D();
   last_scan_ = st.step.scan;
-  st.pts = prepare_scan(st.step.scan, opt_.matcher.max_range, opt_.matcher.beam_skip,
-                        opt_.resolution);
+  st.match.emplace(prepare_scan(st.step.scan, opt_.matcher.max_range, opt_.matcher.beam_skip,
+                                opt_.resolution),
+                   opt_.matcher);
+  const ScanPoints& pts = st.match->points();
   // The lattice evaluates 27 poses per particle: it uses an evenly spread
   // subset of the beams, its log-likelihoods scaled back to the full count.
-  st.lattice_pts = spread_subset(st.pts, opt_.lattice_beams);
+  st.lattice_pts = spread_subset(pts, opt_.lattice_beams);
   st.lattice_scale = st.lattice_pts.hit.empty()
                          ? 1.0
-                         : static_cast<double>(st.pts.hit.size()) / st.lattice_pts.hit.size();
-  st.match.emplace(st.pts, opt_.matcher);
+                         : static_cast<double>(pts.hit.size()) / st.lattice_pts.hit.size();
   st.seed = mix_seed(opt_.seed ^ mix_seed(stats_.steps));
   // Where the match's heading basin is narrower than the hill climbing's
   // steps (far returns only, outdoors), it is narrower than the lattice's
@@ -165,7 +166,7 @@ bool GridRbpf::begin_step(const LogStep& input) {
   // default: 1.125 nats a beam, tempered by likelihood_gain 30). Indoor
   // scans hold hundreds of beams within 20 m; outdoors, open ground leaves
   // a handful within the matching range.
-  st.can_weigh = static_cast<double>(st.pts.hit.size()) *
+  st.can_weigh = static_cast<double>(pts.hit.size()) *
                      matcher_.unmatched_beam_cost(opt_.resolution) >=
                  opt_.likelihood_gain;
   st.fell_back.assign(particles_.size(), 0);
@@ -254,9 +255,8 @@ void GridRbpf::move(size_t g) {
 
 GridRbpf::Proposal GridRbpf::propose(const Particle& p) const {
   const Step& st = *step_;
-  const ScanPoints& pts = st.pts;
   const Pose2D& u = st.step.odometry_increment;
-  const size_t n = pts.hit.size();
+  const size_t n = st.match->points().hit.size();
   Proposal out;
   if (opt_.proposal != ProposalKind::kOptimal || n == 0) return out;
   MatchScore ms;
@@ -312,7 +312,7 @@ void GridRbpf::place(size_t i, const Proposal& prop) {
     const Pose2D from = p.pose;
     const bool dead_reckon = opt_.proposal == ProposalKind::kOptimal && !st.can_weigh;
     p.pose = dead_reckon ? from + u : motion_.sample(from, u, rng);
-    if (!st.pts.hit.empty()) {
+    if (!st.match->points().hit.empty()) {
       const Lattice lat =
           evaluate_lattice(p.map, from, u, st.lattice_pts, st.lattice_scale, p.pose,
                            st.sample_angular);

@@ -212,8 +212,9 @@ class GridRbpf {
   // A step between begin_step() and end_step().
   struct Step {
     LogStep step;  // with the odometry accumulated since the last filtered scan
-    ScanPoints pts, lattice_pts;
-    std::optional<MatchScan> match;  // pts made ready for the matcher
+    // The scan's points, made ready for the matcher; the lattice's subset.
+    std::optional<MatchScan> match;
+    ScanPoints lattice_pts;
     double lattice_scale = 1.0;
     double sample_angular = 0.0;  // the lattice's heading spacing for this scan
     // Whether the scan has beams enough for its weights to tell particles
