@@ -5,6 +5,7 @@ corridors and rooms.
 
 Run directly or through ctest (sim_office_script).
 """
+import gzip
 import math
 import os
 import subprocess
@@ -88,6 +89,44 @@ class SimOffice(unittest.TestCase):
         self.assertNotEqual(r.returncode, 0)
         self.assertIn("--length", r.stderr)
         self.assertFalse(os.path.exists(os.path.join(self.dir.name, "x.log.gz")))
+
+
+    def test_a_finer_laser_writes_robotlaser_lines_of_the_same_walk(self):
+        prefix = os.path.join(self.dir.name, "fine")
+        subprocess.run([sys.executable, SCRIPT, prefix, "--seed", "2", "--length", str(LENGTH),
+                        "--beams-per-degree", "4"], check=True, capture_output=True)
+        scans, odo = [], []
+        with gzip.open(prefix + ".log.gz", "rt") as f:
+            for line in f:
+                s = line.split()
+                self.assertEqual(s[0], "ROBOTLASER1")
+                n = int(s[8])
+                self.assertEqual(n, 721)  # -90..90 degrees, a quarter of a degree apart
+                self.assertEqual(len(s), n + 24)
+                self.assertAlmostEqual(float(s[2]), -math.pi / 2, places=5)  # first bearing
+                self.assertAlmostEqual(float(s[3]), math.pi, places=5)  # field of view
+                self.assertAlmostEqual(float(s[4]), math.radians(0.25), places=6)  # beam spacing
+                scans.append([float(v) for v in s[9:9 + n]])
+                odo.append([float(v) for v in s[10 + n + 3:10 + n + 6]])
+        # The same walk and odometry; every fourth beam is the 1 degree laser's.
+        self.assertEqual(odo, self.odo)
+        with gzip.open(prefix + ".reference.txt.gz", "rt") as f:
+            self.assertEqual([[float(v) for v in line.split()] for line in f], self.ref)
+        agree = total = 0
+        for fine, coarse in zip(scans, self.scans):
+            for k in range(181):
+                a, b = fine[4 * k], coarse[k]
+                if a < 81 and b < 81:
+                    total += 1
+                    agree += abs(a - b) < 0.15
+        self.assertGreater(agree, 0.99 * total)
+
+    def test_fewer_than_one_beam_a_degree_is_refused(self):
+        r = subprocess.run([sys.executable, SCRIPT, os.path.join(self.dir.name, "y"),
+                            "--beams-per-degree", "0"], capture_output=True, text=True)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("--beams-per-degree", r.stderr)
+        self.assertFalse(os.path.exists(os.path.join(self.dir.name, "y.log.gz")))
 
 
 if __name__ == "__main__":
