@@ -253,6 +253,22 @@ TEST_F(HostileInput, RobotThatNeverMoves) {
   EXPECT_LT(std::abs(traj.back().pose.theta), 0.05);
 }
 
+TEST_F(HostileInput, OdometryFrozenWhileTheRobotTurns) {
+  // The wheels' counts stop at step 19 while the robot turns on the spot:
+  // read as standing still, every later scan would be placed at step 19's
+  // pose (a map of the first scans, exit 0). It is refused, naming where.
+  std::vector<Step> steps = drive(40);
+  for (size_t k = 20; k < steps.size(); ++k) {
+    const double turned = 0.1 * double(k - 19);
+    steps[k].ranges = room_scan(steps[19].x, 0.0, turned);
+    steps[k].x = steps[19].x;  // the odometry: frozen
+  }
+  expect_error(run_log(carmen(steps)), ExitCode::kInput, "since step 19, but the odometry");
+  // The same turn with the odometry counting it is mapped.
+  for (size_t k = 20; k < steps.size(); ++k) steps[k].theta = 0.1 * double(k - 19);
+  expect_mapped(run_log(carmen(steps)), 40, kRoomMapSide);
+}
+
 TEST_F(HostileInput, LogOfOnlyOdometry) {
   std::string text;
   for (int k = 0; k < 50; ++k)

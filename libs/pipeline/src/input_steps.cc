@@ -5,11 +5,17 @@
 #include <cstdio>
 
 #include "hmt/common/error.h"
+#include "frozen_odometry.h"
 
 namespace hmt::pipeline {
 
 InputSteps::InputSteps(std::unique_ptr<io::LogStream> stream, const InputOptions& input)
-    : io::LogStream(stream->source()), stream_(std::move(stream)), input_(input) {}
+    : io::LogStream(stream->source()),
+      stream_(std::move(stream)),
+      input_(input),
+      frozen_(std::make_unique<FrozenOdometryCheck>()) {}
+
+InputSteps::~InputSteps() = default;
 
 bool InputSteps::pull() {
   LogStep step;
@@ -30,6 +36,7 @@ bool InputSteps::pull() {
                      std::to_string(static_cast<size_t>(input_.first_step) + pulled_) +
                      ": the odometry moves the robot " + m + " (broken odometry?)");
   }
+  frozen_->add(step, static_cast<size_t>(input_.first_step) + pulled_, source());
   ++pulled_;
   ahead_.push_back(std::move(step));
   return true;

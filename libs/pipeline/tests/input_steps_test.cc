@@ -64,6 +64,81 @@ TEST(InputSteps, BrokenOdometryNamesTheStepOfTheLog) {
   }
 }
 
+// A room's scan of `beams` beams from a robot `x` metres along it: the
+// ranges grow with x (a wall ahead moving away), so scans from two places a
+// metre or more apart differ in every beam.
+LaserScan room_scan(double x, size_t beams = 90) {
+  LaserScan scan;
+  scan.max_range = 30.0f;
+  for (size_t i = 0; i < beams; ++i)
+    scan.ranges.push_back(static_cast<float>(2.0 + 0.01 * static_cast<double>(i) + x));
+  scan.valid.assign(beams, 1);
+  return scan;
+}
+
+// Steps every `step` metres along the room by the scans, the odometry saying
+// so up to step `frozen_from` (exclusive) and nothing after it.
+Log walk(size_t n, double step, size_t frozen_from) {
+  Log log;
+  log.source = "walk.log";
+  for (size_t k = 0; k < n; ++k) {
+    LogStep s;
+    s.timestamp = static_cast<double>(k);
+    s.has_odometry = k > 0;
+    if (k > 0 && k < frozen_from) s.odometry_increment = Pose2D(step, 0, 0);
+    s.scan = room_scan(step * static_cast<double>(k));
+    log.steps.push_back(s);
+  }
+  return log;
+}
+
+std::string read_all(const Log& log) {
+  InputSteps steps(io::stream_of(log), InputOptions{});
+  LogStep s;
+  try {
+    while (steps.next(s)) {
+    }
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(InputSteps, OdometryThatStandsStillWhileTheScansMoveIsAnError) {
+  // Working odometry: every scan differs from the one before by a metre,
+  // and no scan is compared across that motion.
+  EXPECT_EQ(read_all(walk(12, 1.0, 12)), "");
+  // Frozen from step 5 on: step 4 is the last place the odometry moves to,
+  // and step 5's scene moved without it.
+  const std::string what = read_all(walk(12, 1.0, 5));
+  EXPECT_NE(what.find("log 'walk.log' step 5: 100 % of the laser's returns changed by more "
+                      "than 0.5 m since step 4"),
+            std::string::npos)
+      << what;
+  EXPECT_NE(what.find("the odometry is frozen or missing"), std::string::npos) << what;
+  // No odometry at all: the second scan already gives it away.
+  EXPECT_NE(read_all(walk(12, 1.0, 1)).find("step 1:"), std::string::npos);
+}
+
+TEST(InputSteps, ARobotStandingStillMaySeeItsSceneChangeInPart) {
+  // Standing still for 20 steps while something near the laser (people, a
+  // door) changes 70 % of the beams: the same place, not an error.
+  Log log = walk(4, 1.0, 4);
+  for (size_t k = 0; k < 20; ++k) {
+    LogStep s;
+    s.timestamp = static_cast<double>(log.steps.size());
+    s.has_odometry = true;
+    s.scan = log.steps.back().scan;
+    for (size_t i = 0; i < s.scan.size() * 7 / 10; ++i) s.scan.ranges[i] = 0.6f + 0.01f * k;
+    log.steps.push_back(s);
+  }
+  EXPECT_EQ(read_all(log), "");
+  // With fewer beams returning in both than the check needs, it says nothing.
+  Log sparse = walk(6, 1.0, 1);
+  for (LogStep& s : sparse.steps) s.scan = room_scan(s.timestamp, 19);
+  EXPECT_EQ(read_all(sparse), "");
+}
+
 TEST(InputSteps, CountsTimestampsThatDoNotIncrease) {
   Log log = straight_log(8);
   InputOptions in;

@@ -16,6 +16,8 @@
 
 namespace hmt::pipeline {
 
+class FrozenOdometryCheck;  // frozen_odometry.h
+
 // Opens the input log (again): io::open_log() of [input] log, or a log in
 // memory for tests.
 using LogOpener = std::function<std::unique_ptr<io::LogStream>()>;
@@ -23,13 +25,15 @@ using LogOpener = std::function<std::unique_ptr<io::LogStream>()>;
 class InputSteps : public io::LogStream {
  public:
   InputSteps(std::unique_ptr<io::LogStream> stream, const InputOptions& input);
+  ~InputSteps() override;
 
   // The step `ahead` places after the next one, read but not taken; nullptr
   // past the last. The steps peeked are held until taken.
   const LogStep* peek(size_t ahead = 0);
   // Takes the next step; false past the last. Throws InputError naming the
   // step (its index in the log) for odometry that moves more than
-  // max_step_motion, and whatever the reader throws.
+  // max_step_motion, for odometry that stands still while the laser sees
+  // the robot move (frozen_odometry.h), and whatever the reader throws.
   bool next(LogStep& out) override;
   // How many steps have been taken.
   size_t taken() const { return taken_; }
@@ -64,6 +68,7 @@ class InputSteps : public io::LogStream {
   bool skipped_ = false;  // first_step steps dropped
   ClockFaults clock_;
   double last_time_ = 0.0;  // the last step taken's timestamp
+  std::unique_ptr<FrozenOdometryCheck> frozen_;
 };
 
 }  // namespace hmt::pipeline
