@@ -269,6 +269,28 @@ TEST_F(HostileInput, OdometryFrozenWhileTheRobotTurns) {
   expect_mapped(run_log(carmen(steps)), 40, kRoomMapSide);
 }
 
+TEST_F(HostileInput, OdometryTurningTheWrongWay) {
+  // The robot drives 1 m, then turns on the spot, 0.2 rad a step; its
+  // odometry's heading mirrored (a left-handed frame), or in degrees. The
+  // matches would start half a radian or more off at every turn, beyond the
+  // heading search: a garbage map with exit 0. Refused, naming the problem.
+  std::vector<Step> steps = drive(70);
+  for (size_t k = 10; k < steps.size(); ++k) {
+    steps[k].x = steps[9].x;
+    steps[k].theta = 0.2 * double(k - 9);
+    steps[k].ranges = room_scan(steps[k].x, 0.0, steps[k].theta);
+  }
+  expect_mapped(run_log(carmen(steps)), 70, kRoomMapSide);
+  std::vector<Step> mirrored = steps;
+  for (Step& s : mirrored) s.theta = -s.theta;
+  expect_error(run_log(carmen(mirrored)), ExitCode::kInput,
+               "the odometry's turns disagree with the laser's at 10 of the first 10");
+  // In degrees, a step's 0.2 rad reads as 11.46 rad: -1.11 rad once wrapped.
+  std::vector<Step> degrees = steps;
+  for (Step& s : degrees) s.theta *= 180.0 / kPi;
+  expect_error(run_log(carmen(degrees)), ExitCode::kInput, "headings in degrees");
+}
+
 TEST_F(HostileInput, LogOfOnlyOdometry) {
   std::string text;
   for (int k = 0; k < 50; ++k)

@@ -6,6 +6,7 @@
 
 #include "hmt/common/error.h"
 #include "frozen_odometry.h"
+#include "odometry_turns.h"
 
 namespace hmt::pipeline {
 
@@ -13,7 +14,8 @@ InputSteps::InputSteps(std::unique_ptr<io::LogStream> stream, const InputOptions
     : io::LogStream(stream->source()),
       stream_(std::move(stream)),
       input_(input),
-      frozen_(std::make_unique<FrozenOdometryCheck>()) {}
+      frozen_(std::make_unique<FrozenOdometryCheck>()),
+      turns_(std::make_unique<OdometryTurnsCheck>()) {}
 
 InputSteps::~InputSteps() = default;
 
@@ -37,6 +39,7 @@ bool InputSteps::pull() {
                      ": the odometry moves the robot " + m + " (broken odometry?)");
   }
   frozen_->add(step, static_cast<size_t>(input_.first_step) + pulled_, source());
+  turns_->add(step, static_cast<size_t>(input_.first_step) + pulled_, source());
   ++pulled_;
   ahead_.push_back(std::move(step));
   return true;

@@ -17,6 +17,7 @@
 namespace hmt::pipeline {
 
 class FrozenOdometryCheck;  // frozen_odometry.h
+class OdometryTurnsCheck;   // odometry_turns.h
 
 // Opens the input log (again): io::open_log() of [input] log, or a log in
 // memory for tests.
@@ -69,6 +70,7 @@ class InputSteps : public io::LogStream {
   ClockFaults clock_;
   double last_time_ = 0.0;  // the last step taken's timestamp
   std::unique_ptr<FrozenOdometryCheck> frozen_;
+  std::unique_ptr<OdometryTurnsCheck> turns_;
 };
 
 }  // namespace hmt::pipeline
