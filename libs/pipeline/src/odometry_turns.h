@@ -21,9 +21,9 @@
 // turn.
 //
 // On the nine shared logs and the simulated office floors (worlds 1-3,
-// lasers of 1, 2 and 4 beams a degree) not one of the first ten decisive
-// turns disagrees (the near heading explains 116-262 beams, the far at most
-// 88); Intel with its headings in degrees is refused at step 41 (8 of 10
+// lasers of 1, 2 and 4 beams a degree) not one decisive turn disagrees (the
+// near heading explains 116-262 beams, the far at most 88), and their runs
+// are as before; Intel with its headings in degrees is refused at step 41 (8 of 10
 // disagree), with its frame mirrored (y and headings negated) at step 10 (10
 // of 10). The simulated campus turns by 0.5 rad within a metre nowhere in
 // its first 400 steps: there the check says nothing.

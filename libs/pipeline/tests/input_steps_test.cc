@@ -3,6 +3,9 @@
 // the run read.
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <string>
+
 #include "hmt/checkpoint/checkpoint.h"
 #include "hmt/common/error.h"
 #include "hmt/pipeline/input_steps.h"
@@ -11,20 +14,32 @@
 namespace hmt::pipeline {
 namespace {
 
-// `n` steps 0.5 m apart; step k's scan reads k metres.
-Log straight_log(size_t n) {
+// `n` steps `step` metres apart, step k at time k with the scan
+// scan_at(k), the odometry saying so up to step `frozen_from` (exclusive)
+// and nothing after it.
+Log walk(const std::string& source, size_t n, double step, size_t frozen_from,
+         const std::function<LaserScan(size_t)>& scan_at) {
   Log log;
-  log.source = "straight.log";
+  log.source = source;
   for (size_t k = 0; k < n; ++k) {
     LogStep s;
     s.timestamp = static_cast<double>(k);
     s.has_odometry = k > 0;
-    if (k > 0) s.odometry_increment = Pose2D(0.5, 0, 0);
-    s.scan.ranges.assign(3, static_cast<float>(k));
-    s.scan.valid.assign(3, 1);
+    if (k > 0 && k < frozen_from) s.odometry_increment = Pose2D(step, 0, 0);
+    s.scan = scan_at(k);
     log.steps.push_back(s);
   }
   return log;
+}
+
+// `n` steps 0.5 m apart; step k's scan reads k metres.
+Log straight_log(size_t n) {
+  return walk("straight.log", n, 0.5, n, [](size_t k) {
+    LaserScan scan;
+    scan.ranges.assign(3, static_cast<float>(k));
+    scan.valid.assign(3, 1);
+    return scan;
+  });
 }
 
 TEST(InputSteps, SelectsAsTheWholeLogSelectionDid) {
@@ -79,17 +94,8 @@ LaserScan room_scan(double x, size_t beams = 90) {
 // Steps every `step` metres along the room by the scans, the odometry saying
 // so up to step `frozen_from` (exclusive) and nothing after it.
 Log walk(size_t n, double step, size_t frozen_from) {
-  Log log;
-  log.source = "walk.log";
-  for (size_t k = 0; k < n; ++k) {
-    LogStep s;
-    s.timestamp = static_cast<double>(k);
-    s.has_odometry = k > 0;
-    if (k > 0 && k < frozen_from) s.odometry_increment = Pose2D(step, 0, 0);
-    s.scan = room_scan(step * static_cast<double>(k));
-    log.steps.push_back(s);
-  }
-  return log;
+  return walk("walk.log", n, step, frozen_from,
+              [step](size_t k) { return room_scan(step * static_cast<double>(k)); });
 }
 
 std::string read_all(const Log& log) {
