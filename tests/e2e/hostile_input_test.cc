@@ -5,6 +5,7 @@
 // the walls, before each case twists one thing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -271,7 +272,8 @@ TEST_F(HostileInput, OdometryFrozenWhileTheRobotTurns) {
 
 TEST_F(HostileInput, OdometryTurningTheWrongWay) {
   // The robot drives 1 m, then turns on the spot, 0.2 rad a step; its
-  // odometry's heading mirrored (a left-handed frame), or in degrees. The
+  // odometry's heading mirrored (a left-handed frame), or in degrees, or its
+  // laser upside down. The
   // matches would start half a radian or more off at every turn, beyond the
   // heading search: a garbage map with exit 0. Refused, naming the problem.
   std::vector<Step> steps = drive(70);
@@ -289,6 +291,10 @@ TEST_F(HostileInput, OdometryTurningTheWrongWay) {
   std::vector<Step> degrees = steps;
   for (Step& s : degrees) s.theta *= 180.0 / kPi;
   expect_error(run_log(carmen(degrees)), ExitCode::kInput, "headings in degrees");
+  // A laser upside down: its beams run from left to right.
+  std::vector<Step> upside_down = steps;
+  for (Step& s : upside_down) std::reverse(s.ranges.begin(), s.ranges.end());
+  expect_error(run_log(carmen(upside_down)), ExitCode::kInput, "a laser mounted upside down");
 }
 
 TEST_F(HostileInput, LogOfOnlyOdometry) {

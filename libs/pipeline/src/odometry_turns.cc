@@ -53,7 +53,8 @@ void OdometryTurnsCheck::add(const LogStep& step, size_t index, const std::strin
                 "times better at a heading more than %.1f rad from the odometry's",
                 disagreed_, decisive_, worst_, kClearly, kAgree);
   throw InputError("log '" + source + "' step " + std::to_string(index) + ": " + m +
-                   " (headings in degrees, or a left-handed odometry frame?)");
+                   " (headings in degrees, a left-handed odometry frame, or a laser mounted "
+                   "upside down: its beams in the reverse order?)");
 }
 
 void OdometryTurnsCheck::check(const LaserScan& scan, const Pose2D& odometry) {

@@ -1,6 +1,8 @@
 // A log whose odometry turns the robot otherwise than its laser sees it turn:
 // headings in degrees read as radians, a left-handed odometry frame (every
-// turn the wrong way), a heading field that is not the robot's. The filter's
+// turn the wrong way), a heading field that is not the robot's, a laser
+// mounted upside down (its beams in the reverse order: the scene turns the
+// wrong way). The filter's
 // matches start from the odometry and search headings only within
 // [metric_slam] heading_search_range of it, so such a log is mapped into
 // garbage with exit code 0 (Intel with its headings in degrees: 24 m
@@ -23,10 +25,11 @@
 // On the nine shared logs and the simulated office floors (worlds 1-3,
 // lasers of 1, 2 and 4 beams a degree) not one decisive turn disagrees (the
 // near heading explains 116-262 beams, the far at most 88), and their runs
-// are as before; Intel with its headings in degrees is refused at step 41 (8 of 10
-// disagree), with its frame mirrored (y and headings negated) at step 10 (10
-// of 10). The simulated campus turns by 0.5 rad within a metre nowhere in
-// its first 400 steps: there the check says nothing.
+// are as before. Intel is refused with its headings in degrees at step 41
+// (8 of 10 disagree), with its frame mirrored (y and headings negated) at
+// step 10 (10 of 10), with its beams reversed at step 10 (10 of 10). The
+// simulated campus turns by 0.5 rad within a metre nowhere in its first 400
+// steps: there the check says nothing.
 #pragma once
 
 #include <cstddef>
