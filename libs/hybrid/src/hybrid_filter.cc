@@ -212,7 +212,9 @@ std::vector<EventInput> HybridFilter::prepare_event(const area::AreaDecision& de
     in.map = h.map;
     // The robot in the current area: the best particle, with the particles'
     // spread (floored: after resampling it can be nearly zero).
-    in.robot = PoseGaussian(now, spread(current_poses(f), f.weights(), now));
+    // The steps moved by the odometry alone (a blind laser) spread no
+    // particle; their error is kept beside the spread.
+    in.robot = PoseGaussian(now, spread(current_poses(f), f.weights(), now) + f.blind_cov());
     in.robot.cov.diagonal() += Eigen::Vector3d(1e-4, 1e-4, 1e-5);
     // The latest observations: the new area's keyframes seen from the best
     // particle's path (those taken in this area; earlier ones are in no path).
@@ -389,8 +391,9 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
     child.area_start_step = step_;
     AreaId entered;
     if (o.is_new()) {
+      const Eigen::Matrix3d blind = child.filter.blind_cov();  // reset by start_new_area
       const std::vector<Pose2D> origins = child.filter.start_new_area(seeds, best);
-      PoseGaussian arc(origins[best], spread(origins, w, origins[best]));
+      PoseGaussian arc(origins[best], spread(origins, w, origins[best]) + blind);
       const double len = origins[best].norm();
       const double sxy = opt_.hybrid.arc_floor_xy(len), sth = opt_.hybrid.arc_floor_theta(len);
       arc.cov.diagonal() += Eigen::Vector3d(sxy * sxy, sxy * sxy, sth * sth);

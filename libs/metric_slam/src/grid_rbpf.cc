@@ -330,6 +330,23 @@ void GridRbpf::place(size_t i, const Proposal& prop) {
 
 void GridRbpf::end_step() {
   if (!step_) return;
+  const size_t b = best_index();
+  if (!step_->can_weigh && step_->fell_back[b] && opt_.proposal == ProposalKind::kOptimal &&
+      particles_[b].path.size() >= 2) {
+    // Moved by the odometry alone: x' = x (+) (u + n), n ~ N(0, Q) in the
+    // frame of x, Q the motion model's (isotropic in x, y, so rotating it
+    // leaves it as it is).
+    const Particle& p = particles_[b];
+    const Pose2D& from = p.path[p.path.size() - 2];
+    const Pose2D& u = step_->step.odometry_increment;
+    const double c = std::cos(from.theta), s = std::sin(from.theta);
+    Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
+    J(0, 2) = -s * u.x - c * u.y;
+    J(1, 2) = c * u.x - s * u.y;
+    const MotionSigmas q = motion_.sigmas(u);
+    blind_cov_ = J * blind_cov_ * J.transpose();
+    blind_cov_.diagonal() += Eigen::Vector3d(q.xy * q.xy, q.xy * q.xy, q.theta * q.theta);
+  }
   stats_.particle_moves += step_->fell_back.size();
   for (char f : step_->fell_back) stats_.odometry_fallbacks += (f != 0);
   std::vector<double> after(particles_.size());
@@ -408,6 +425,9 @@ std::vector<Pose2D> GridRbpf::start_new_area(const std::vector<SeedScan>& seeds,
     throw Error(ExitCode::kInternal, "start_new_area() before the first scan");
   if (seed_particle >= particles_.size())
     throw Error(ExitCode::kInternal, "start_new_area(): no such particle");
+  // The new area's frame is the robot's pose now: the error so far is the
+  // arc's (the caller has read blind_cov()).
+  blind_cov_.setZero();
   const Particle& sp = particles_[seed_particle];
   for (const SeedScan& s : seeds)
     if (!s.scan || s.path_index >= sp.path.size())
@@ -444,6 +464,8 @@ void GridRbpf::load_area(const grid::OccupancyGrid& map, const std::vector<Pose2
                          const Pose2D* view_at) {
   if (particles_.empty())
     throw Error(ExitCode::kInternal, "load_area() before the first scan");
+  // The poses come from a match in the known area: it located the robot.
+  blind_cov_.setZero();
   if (poses.size() != 1 && poses.size() != particles_.size())
     throw Error(ExitCode::kInternal, "load_area(): need one pose or one per particle");
   // Without the last scan, particles that find nothing to match all fall
@@ -480,6 +502,7 @@ void GridRbpf::load_area(const grid::OccupancyGrid& map, const std::vector<Pose2
 }
 
 void GridRbpf::restart(const grid::OccupancyGrid& map, const Pose2D& pose) {
+  blind_cov_.setZero();
   Particle p;
   p.map = map;
   p.pose = pose;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 
@@ -176,6 +177,44 @@ TEST(GridRbpf, AStretchWithoutReturnsCostsNoMoreHeadingThanTheOdometry) {
   const double odo = std::fabs(wrap_angle(dr.theta - run.truth[last].theta));
   // What the filter had before the stretch (a few mrad) plus the odometry's.
   EXPECT_LT(worst, odo + 0.02) << "odometry's own error " << odo;
+}
+
+TEST(GridRbpf, AStretchWithoutReturnsKeepsTheErrorTheParticlesDoNotSpread) {
+  // The same stretch: the particles follow the odometry alone there, so
+  // their spread stays as it was; blind_cov() holds the motion model's error
+  // those steps add, growing step by step, and is zero where scans weigh.
+  const size_t first = 40, last = 56;
+  const auto run = testing_sim::with_sparse_scans(
+      testing_sim::simulate({{2, 2, 0}, {6, 2, 0}, {6, 8, 0}, {12, 8, 0}, {12, 3, 0},
+                             {18, 3, 0}, {18, 8, 0}},
+                            0.3, 21, 0.01),
+      first, last, 0);
+  GridRbpf f(small_filter(2));
+  for (size_t i = 0; i < first; ++i) f.process(run.log.steps[i]);
+  EXPECT_TRUE(f.blind_cov().isZero());
+  // The heading's variance grows by the model's at every processed step.
+  double heading = 0.0;
+  size_t grew = 0;
+  for (size_t i = first; i <= last; ++i) {
+    f.process(run.log.steps[i]);
+    const double h = f.blind_cov()(2, 2);
+    EXPECT_GE(h, heading) << "step " << i;
+    grew += h > heading;
+    heading = h;
+  }
+  const double trace = f.blind_cov().trace();
+  // The steps the filter processed (it skips those that barely moved).
+  EXPECT_GE(grew, (last - first) / 2);
+  const Eigen::Matrix3d c = f.blind_cov();
+  EXPECT_TRUE(c.isApprox(c.transpose()));
+  EXPECT_GT(c.ldlt().vectorD().minCoeff(), 0.0);
+  // Each step adds at least the motion model's floors: 16 steps of 0.3 m.
+  EXPECT_GT(std::sqrt(c(0, 0) + c(1, 1)), 0.05);
+  // Scans again: the error stays until an area begins, which takes it.
+  f.process(run.log.steps[last + 1]);
+  EXPECT_EQ(f.blind_cov().trace(), trace);
+  f.start_new_area();
+  EXPECT_TRUE(f.blind_cov().isZero());
 }
 
 TEST(RbpfOptions, BadHeadingSearchValuesAreConfigErrorsNamingTheKey) {

@@ -116,6 +116,17 @@ class GridRbpf {
   // (tempered) evidence of the data under this filter's map hypothesis,
   // which is how the hybrid filter weighs topological hypotheses.
   double last_log_evidence() const { return last_log_evidence_; }
+  // The robot's pose error, in the current area's frame, that steps moved by
+  // the odometry alone have added since the area began: steps whose scan has
+  // too few beams for the weights to tell particles apart (nothing in
+  // range, a blocked or failed laser, open ground), where the particles
+  // follow the odometry without the motion model's noise (place()) and so
+  // their spread does not grow. The motion model's covariance, propagated
+  // along the best particle's path; zero where every step could weigh.
+  // Whoever reads the particles' spread as the robot's uncertainty (the
+  // hybrid filter's arcs and TSBI's priors) adds it, or a loop after a
+  // blind stretch is searched for within centimetres of a pose metres off.
+  const Eigen::Matrix3d& blind_cov() const { return blind_cov_; }
   // Restarts the random streams from `seed` (a copy that becomes a distinct
   // hypothesis draws its own numbers).
   void reseed(uint64_t seed);
@@ -239,6 +250,7 @@ class GridRbpf {
   Pose2D pending_motion_;  // odometry since the last filtered scan
   RbpfStats stats_;
   double last_log_evidence_ = 0.0;
+  Eigen::Matrix3d blind_cov_ = Eigen::Matrix3d::Zero();
   std::optional<Step> step_;  // between begin_step() and end_step()
 };
 
