@@ -1,11 +1,14 @@
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "hmt/common/error.h"
@@ -37,6 +40,43 @@ double flaser_resolution(size_t n) {
   if (n == 180 || n == 181) return 1.0 * kDeg;
   if (n == 360 || n == 361) return 0.5 * kDeg;
   return n > 1 ? M_PI / double(n - 1) : 0.0;
+}
+
+// What a log's PARAM lines say of its front laser (FLASER lines hold ranges
+// only): its angular step (laser_front_laser_resolution, degrees) and field
+// of view (laser_front_laser_fov: radians where at most 2 pi, as csail's
+// 3.14159, else degrees).
+struct FrontLaserParams {
+  std::optional<double> resolution_deg;
+  std::optional<double> fov;
+};
+
+// A FLASER scan's first bearing and step: the PARAMs' step (or their field
+// of view over the beams) where they give one, centred on the robot's
+// heading; where they describe a 180 degree span (to within a step: the
+// SICK scanners of the classic logs, whatever the count), or say nothing,
+// the count's rule above, as before. A span beyond a full turn is refused.
+std::pair<double, double> flaser_angles(size_t n, const FrontLaserParams& p,
+                                        const std::function<void(const std::string&)>& fail) {
+  const double by_count = flaser_resolution(n);
+  double step = 0.0;
+  if (p.resolution_deg) {
+    step = *p.resolution_deg * kDeg;
+  } else if (p.fov && n > 1) {
+    step = (*p.fov > 2.0 * M_PI + 1e-6 ? *p.fov * kDeg : *p.fov) / double(n - 1);
+  }
+  if (!(step > 0.0) || n < 2) return {-M_PI / 2.0, by_count};
+  const double span = step * double(n - 1);
+  if (std::fabs(span - M_PI) <= step + 1e-9) return {-M_PI / 2.0, by_count};
+  if (span > 2.0 * M_PI + step + 1e-9) {
+    char m[160];
+    std::snprintf(m, sizeof m,
+                  "FLASER scans of %zu beams %.4g degrees apart (its PARAM lines) would span "
+                  "%.1f degrees, more than a full turn",
+                  n, step / kDeg, span / kDeg);
+    fail(m);
+  }
+  return {-span / 2.0, step};
 }
 
 // The two largest readings (with repeats), the first scan and the beams
@@ -131,6 +171,7 @@ class CarmenParser {
   size_t lines() const { return line_no_; }
   bool any_text() const { return any_text_; }
   double laser_offset() const { return laser_offset_; }
+  const FrontLaserParams& front_laser() const { return front_laser_; }
 
  private:
   static bool plausible_message_name(std::string_view s) {
@@ -253,12 +294,23 @@ class CarmenParser {
       if (f.size() < 3) fail("PARAM robot_frontlaser_offset without a value");
       laser_offset_ = number(f, 2, "robot_frontlaser_offset");
     }
+    // The first of each (csail states its resolution twice, alike).
+    const auto angle = [&](std::string_view key, std::optional<double>* out) {
+      if (f.size() < 2 || f[1] != key || *out) return;
+      if (f.size() < 3) fail("PARAM " + std::string(key) + " without a value");
+      const double v = number(f, 2, std::string(key).c_str());
+      if (!(v > 0.0)) fail("PARAM " + std::string(key) + " is " + printable(f[2]) + ", not above 0");
+      *out = v;
+    };
+    angle("laser_front_laser_resolution", &front_laser_.resolution_deg);
+    angle("laser_front_laser_fov", &front_laser_.fov);
   }
 
   std::string path_;
   size_t line_no_ = 0;
   bool any_text_ = false;
   double laser_offset_ = 0.0;
+  FrontLaserParams front_laser_;
   std::vector<std::string_view> f_;
 };
 
@@ -292,6 +344,11 @@ class CarmenStream : public LogStream {
     max_range_ = stats.max_range();
     dead_beams_ = stats.dead_beams();
     laser_offset_ = parser.laser_offset();
+    front_laser_ = parser.front_laser();
+    // PARAMs that no scan of the log could span fail here, before any step.
+    if (use_flaser) flaser_angles(stats.first.size(), front_laser_, [&](const std::string& m) {
+        throw InputError("CARMEN log '" + path + "': " + m);
+      });
   }
 
   bool next(LogStep& out) override {
@@ -323,6 +380,14 @@ class CarmenStream : public LogStream {
     scan.timestamp = s.timestamp;
     scan.angle_min = s.angle_min;
     scan.angle_increment = s.angle_increment;
+    if (kind_ == CarmenParser::Kind::kFlaser) {
+      const auto [first, step] = flaser_angles(
+          s.ranges.size(), front_laser_, [&](const std::string& m) {
+            throw InputError("CARMEN log '" + source() + "': " + m);
+          });
+      scan.angle_min = static_cast<float>(first);
+      scan.angle_increment = static_cast<float>(step);
+    }
     scan.max_range = max_range_;
     scan.sensor_pose = s.sensor_pose.value_or(Pose2D(laser_offset_, 0, 0));
     scan.valid.resize(s.ranges.size());
@@ -364,6 +429,7 @@ class CarmenStream : public LogStream {
   float max_range_ = 0.0f;
   std::vector<uint8_t> dead_beams_;
   double laser_offset_ = 0.0;
+  FrontLaserParams front_laser_;
   uint64_t file_bytes_ = 0;
   std::unique_ptr<detail::LineReader> in_;
   std::unique_ptr<CarmenParser> parser_;

@@ -192,6 +192,44 @@ TEST(CarmenConversion, BeamResolutionByCount) {
   }
 }
 
+TEST(CarmenConversion, BeamAnglesFromTheLogsParams) {
+  // A FLASER line holds ranges only; where the count is not a SICK
+  // scanner's, the log's PARAMs say what the laser was: a 270 degree laser of
+  // 271 beams a degree apart, centred on the heading, by its resolution
+  // (degrees) or by its field of view (degrees, or radians up to 2 pi).
+  const std::string p = scratch_dir() + "/params.log";
+  const std::string scan = flaser_line(std::vector<std::string>(271, "1"), 0, 0, 0, "1");
+  for (const std::string param :
+       {"PARAM laser_front_laser_resolution 1.0 nohost 0\n",
+        "PARAM laser_front_laser_fov 270 nohost 0\n",
+        "PARAM laser_front_laser_fov 4.71238898 nohost 0\n"}) {
+    write_bytes(p, param + scan);
+    const hmt::Log log = read_carmen(p);
+    EXPECT_NEAR(log.steps[0].scan.angle_min, -135.0 * M_PI / 180, 1e-6) << param;
+    EXPECT_NEAR(log.steps[0].scan.angle_increment, M_PI / 180, 1e-7) << param;
+  }
+  // PARAMs of a 180 degree span (the shared logs': 1 degree for 180 beams,
+  // 0.5 for 360) keep the count's rule, first beam at -90 degrees.
+  write_bytes(p, "PARAM laser_front_laser_resolution 1.0 nohost 0\n" +
+                     flaser_line(std::vector<std::string>(180, "1"), 0, 0, 0, "1"));
+  EXPECT_FLOAT_EQ(read_carmen(p).steps[0].scan.angle_min, static_cast<float>(-M_PI / 2));
+  // A span no laser has, or a step that is not a number above 0: refused.
+  write_bytes(p, "PARAM laser_front_laser_resolution 2.0 nohost 0\n" + scan);
+  EXPECT_THROW(
+      {
+        try {
+          read_carmen(p);
+        } catch (const InputError& e) {
+          EXPECT_NE(std::string(e.what()).find("more than a full turn"), std::string::npos)
+              << e.what();
+          throw;
+        }
+      },
+      InputError);
+  write_bytes(p, "PARAM laser_front_laser_resolution -1 nohost 0\n" + scan);
+  EXPECT_THROW(read_carmen(p), InputError);
+}
+
 TEST(CarmenConversion, RobotLaserOnlyLog) {
   const std::string p = scratch_dir() + "/robotlaser.log";
   // type start fov res maxr acc rem n r.. m laser(x y th) robot(x y th)

@@ -152,18 +152,24 @@ TEST(GridRbpf, AScanWithNothingInRangeMovesEveryParticleByTheOdometry) {
   }
 }
 
-// Five metres of open ground in the office (steps 40-56, no returns at
-// all), with odometry as good as a robot's on pavement: over four seeds the
-// filter leaves the stretch with the odometry's heading error, not with the
-// motion model's spread (0.1 rad per metre by default, drawn at every step
-// while no scan could pick among the particles: 0.5 rad off at worst).
-TEST(GridRbpf, AStretchWithoutReturnsCostsNoMoreHeadingThanTheOdometry) {
-  const size_t first = 40, last = 56;
-  const auto run = testing_sim::with_sparse_scans(
+// Five metres of open ground in the office (steps kBlindFirst-kBlindLast,
+// no returns at all), with odometry as good as a robot's on pavement.
+constexpr size_t kBlindFirst = 40, kBlindLast = 56;
+testing_sim::SimRun open_ground_run() {
+  return testing_sim::with_sparse_scans(
       testing_sim::simulate({{2, 2, 0}, {6, 2, 0}, {6, 8, 0}, {12, 8, 0}, {12, 3, 0},
                              {18, 3, 0}, {18, 8, 0}},
                             0.3, 21, 0.01),
-      first, last, 0);
+      kBlindFirst, kBlindLast, 0);
+}
+
+// Over four seeds the filter leaves the open ground with the odometry's
+// heading error, not with the motion model's spread (0.1 rad per metre by
+// default, drawn at every step while no scan could pick among the
+// particles: 0.5 rad off at worst).
+TEST(GridRbpf, AStretchWithoutReturnsCostsNoMoreHeadingThanTheOdometry) {
+  const size_t first = kBlindFirst, last = kBlindLast;
+  const auto run = open_ground_run();
   double worst = 0.0;
   for (uint64_t seed = 1; seed <= 4; ++seed) {
     RbpfOptions o = small_filter(2);
@@ -183,12 +189,8 @@ TEST(GridRbpf, AStretchWithoutReturnsKeepsTheErrorTheParticlesDoNotSpread) {
   // The same stretch: the particles follow the odometry alone there, so
   // their spread stays as it was; blind_cov() holds the motion model's error
   // those steps add, growing step by step, and is zero where scans weigh.
-  const size_t first = 40, last = 56;
-  const auto run = testing_sim::with_sparse_scans(
-      testing_sim::simulate({{2, 2, 0}, {6, 2, 0}, {6, 8, 0}, {12, 8, 0}, {12, 3, 0},
-                             {18, 3, 0}, {18, 8, 0}},
-                            0.3, 21, 0.01),
-      first, last, 0);
+  const size_t first = kBlindFirst, last = kBlindLast;
+  const auto run = open_ground_run();
   GridRbpf f(small_filter(2));
   for (size_t i = 0; i < first; ++i) f.process(run.log.steps[i]);
   EXPECT_TRUE(f.blind_cov().isZero());

@@ -11,7 +11,12 @@
 // Beam geometry (FLASER carries none): beam i points at -90 deg + i * res in
 // the sensor frame, res = 1 deg for 180 or 181 beams, 0.5 deg for 360 or 361
 // beams, and for any other count 180 deg / (n - 1) (first beam at -90 deg,
-// last at +90 deg). The sensor sits at (robot_frontlaser_offset, 0, 0) in
+// last at +90 deg); unless the log's PARAMs say otherwise:
+// `laser_front_laser_resolution` (degrees) or `laser_front_laser_fov`
+// (radians up to 2 pi, else degrees) of a span other than 180 deg (to within
+// a step) give the step and a span centred on the heading (a 270 deg laser
+// of 1081 beams: -135 deg + i * 0.25 deg); a span beyond a full turn is an
+// InputError. The sensor sits at (robot_frontlaser_offset, 0, 0) in
 // the robot frame, from `PARAM robot_frontlaser_offset X`, else at the origin.
 //
 // No-return readings: a CARMEN log writes "no return" as the sensor's
