@@ -3,24 +3,16 @@
 #include <cmath>
 #include <cstdio>
 
+#include "hmt/area/scan_sso.h"
 #include "hmt/common/error.h"
 
 namespace hmt::pipeline {
-namespace {
-
-bool returns(const LaserScan& s, size_t i) {
-  const float r = s.ranges[i];
-  return (i >= s.valid.size() || s.valid[i]) && std::isfinite(r) && r > 0.0f &&
-         (s.max_range <= 0.0f || r < s.max_range);
-}
-
-}  // namespace
 
 double FrozenOdometryCheck::changed_share(const LaserScan& a, const LaserScan& b) {
   if (a.size() != b.size()) return -1.0;
   size_t both = 0, changed = 0;
   for (size_t i = 0; i < a.size(); ++i) {
-    if (!returns(a, i) || !returns(b, i)) continue;
+    if (!area::is_valid_return(a, i) || !area::is_valid_return(b, i)) continue;
     ++both;
     const double ra = a.ranges[i], rb = b.ranges[i];
     changed += std::fabs(ra - rb) > kChangedRange + kChangedRangeShare * std::min(ra, rb);

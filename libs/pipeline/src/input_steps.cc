@@ -10,12 +10,14 @@
 
 namespace hmt::pipeline {
 
-InputSteps::InputSteps(std::unique_ptr<io::LogStream> stream, const InputOptions& input)
-    : io::LogStream(stream->source()),
-      stream_(std::move(stream)),
-      input_(input),
-      frozen_(std::make_unique<FrozenOdometryCheck>()),
-      turns_(std::make_unique<OdometryTurnsCheck>()) {}
+InputSteps::InputSteps(std::unique_ptr<io::LogStream> stream, const InputOptions& input,
+                       bool check_odometry)
+    : io::LogStream(stream->source()), stream_(std::move(stream)), input_(input) {
+  if (check_odometry) {
+    frozen_ = std::make_unique<FrozenOdometryCheck>();
+    turns_ = std::make_unique<OdometryTurnsCheck>();
+  }
+}
 
 InputSteps::~InputSteps() = default;
 
@@ -28,18 +30,20 @@ bool InputSteps::pull() {
   }
   if (input_.max_steps > 0 && pulled_ >= static_cast<size_t>(input_.max_steps)) return false;
   if (!stream_->next(step)) return false;
+  const size_t index = static_cast<size_t>(input_.first_step) + pulled_;  // in the log
   const Pose2D& d = step.odometry_increment;
   const double motion = std::hypot(d.x, d.y);
   if (step.has_odometry && !(motion <= input_.max_step_motion)) {
     char m[96];
     std::snprintf(m, sizeof m, "%.3g m in one step, more than [input] max_step_motion = %g m",
                   motion, input_.max_step_motion);
-    throw InputError("log '" + source() + "' step " +
-                     std::to_string(static_cast<size_t>(input_.first_step) + pulled_) +
+    throw InputError("log '" + source() + "' step " + std::to_string(index) +
                      ": the odometry moves the robot " + m + " (broken odometry?)");
   }
-  frozen_->add(step, static_cast<size_t>(input_.first_step) + pulled_, source());
-  turns_->add(step, static_cast<size_t>(input_.first_step) + pulled_, source());
+  if (frozen_) {
+    frozen_->add(step, index, source());
+    turns_->add(step, index, source());
+  }
   ++pulled_;
   ahead_.push_back(std::move(step));
   return true;

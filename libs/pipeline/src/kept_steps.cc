@@ -22,7 +22,9 @@ LogStep KeptSteps::bare_step(size_t k) const {
 std::map<uint64_t, LogStep> read_steps_again(const LogOpener& open, const InputOptions& input,
                                              uint64_t first_step, size_t count,
                                              uint32_t log_crc, const std::set<uint64_t>& wanted) {
-  InputSteps steps(open(), input);
+  // The run checked the odometry as it read the log; this reading checks
+  // the log is that one.
+  InputSteps steps(open(), input, /*check_odometry=*/false);
   const auto changed = [&] {
     return InputError("the log '" + steps.source() +
                       "' changed during the run: read again for the keyframes' scans, it no "

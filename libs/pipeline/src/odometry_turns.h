@@ -58,9 +58,6 @@ class OdometryTurnsCheck {
   // InputError when the turns decided so far show the odometry wrong.
   void add(const LogStep& step, size_t index, const std::string& source);
 
-  size_t decisive() const { return decisive_; }
-  size_t disagreed() const { return disagreed_; }
-
  private:
   // Matches `scan` against a grid of reference_, the odometry's pose of it
   // being `odometry`; counts the turn.

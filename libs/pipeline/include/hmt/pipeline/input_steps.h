@@ -25,7 +25,11 @@ using LogOpener = std::function<std::unique_ptr<io::LogStream>()>;
 
 class InputSteps : public io::LogStream {
  public:
-  InputSteps(std::unique_ptr<io::LogStream> stream, const InputOptions& input);
+  // `check_odometry`: the odometry checked against the scans as the steps
+  // are read (frozen_odometry.h, odometry_turns.h); off for a second
+  // reading of a log the run has read already (read_steps_again).
+  InputSteps(std::unique_ptr<io::LogStream> stream, const InputOptions& input,
+             bool check_odometry = true);
   ~InputSteps() override;
 
   // The step `ahead` places after the next one, read but not taken; nullptr
@@ -34,7 +38,8 @@ class InputSteps : public io::LogStream {
   // Takes the next step; false past the last. Throws InputError naming the
   // step (its index in the log) for odometry that moves more than
   // max_step_motion, for odometry that stands still while the laser sees
-  // the robot move (frozen_odometry.h), and whatever the reader throws.
+  // the robot move or turns otherwise than the laser sees it turn (when
+  // checked), and whatever the reader throws.
   bool next(LogStep& out) override;
   // How many steps have been taken.
   size_t taken() const { return taken_; }
@@ -69,7 +74,7 @@ class InputSteps : public io::LogStream {
   bool skipped_ = false;  // first_step steps dropped
   ClockFaults clock_;
   double last_time_ = 0.0;  // the last step taken's timestamp
-  std::unique_ptr<FrozenOdometryCheck> frozen_;
+  std::unique_ptr<FrozenOdometryCheck> frozen_;  // both null when not checked
   std::unique_ptr<OdometryTurnsCheck> turns_;
 };
 
