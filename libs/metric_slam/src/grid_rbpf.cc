@@ -328,25 +328,28 @@ void GridRbpf::place(size_t i, const Proposal& prop) {
   st.fell_back[i] = fallback;
 }
 
+// A step moved by the odometry alone (place(): too few beams to weigh):
+// x' = x (+) (u + n), n ~ N(0, Q) in the frame of x, Q the motion model's
+// (isotropic in x, y, so rotating it leaves it as it is), propagated along
+// the best particle's path.
+void GridRbpf::add_blind_step() {
+  const size_t b = best_index();
+  const Particle& p = particles_[b];
+  if (!step_->fell_back[b] || p.path.size() < 2) return;
+  const Pose2D& from = p.path[p.path.size() - 2];
+  const Pose2D& u = step_->step.odometry_increment;
+  const double c = std::cos(from.theta), s = std::sin(from.theta);
+  Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
+  J(0, 2) = -s * u.x - c * u.y;
+  J(1, 2) = c * u.x - s * u.y;
+  const MotionSigmas q = motion_.sigmas(u);
+  blind_cov_ = J * blind_cov_ * J.transpose();
+  blind_cov_.diagonal() += Eigen::Vector3d(q.xy * q.xy, q.xy * q.xy, q.theta * q.theta);
+}
+
 void GridRbpf::end_step() {
   if (!step_) return;
-  const size_t b = best_index();
-  if (!step_->can_weigh && step_->fell_back[b] && opt_.proposal == ProposalKind::kOptimal &&
-      particles_[b].path.size() >= 2) {
-    // Moved by the odometry alone: x' = x (+) (u + n), n ~ N(0, Q) in the
-    // frame of x, Q the motion model's (isotropic in x, y, so rotating it
-    // leaves it as it is).
-    const Particle& p = particles_[b];
-    const Pose2D& from = p.path[p.path.size() - 2];
-    const Pose2D& u = step_->step.odometry_increment;
-    const double c = std::cos(from.theta), s = std::sin(from.theta);
-    Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
-    J(0, 2) = -s * u.x - c * u.y;
-    J(1, 2) = c * u.x - s * u.y;
-    const MotionSigmas q = motion_.sigmas(u);
-    blind_cov_ = J * blind_cov_ * J.transpose();
-    blind_cov_.diagonal() += Eigen::Vector3d(q.xy * q.xy, q.xy * q.xy, q.theta * q.theta);
-  }
+  if (!step_->can_weigh && opt_.proposal == ProposalKind::kOptimal) add_blind_step();
   stats_.particle_moves += step_->fell_back.size();
   for (char f : step_->fell_back) stats_.odometry_fallbacks += (f != 0);
   std::vector<double> after(particles_.size());

@@ -208,6 +208,9 @@ class GridRbpf {
   Proposal propose(const Particle& p) const;
   // Moves particle i by `prop` (drawn from it, or by the odometry if not ok).
   void place(size_t i, const Proposal& prop);
+  // end_step() of a step too few beams could weigh: the motion model's
+  // error of the best particle's move, into blind_cov_.
+  void add_blind_step();
   // Groups the particles that start from one pose on one map, into the
   // step under way's members and first.
   void group_same_starts();
