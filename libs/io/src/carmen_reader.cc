@@ -129,7 +129,10 @@ struct ScanStats {
 // Parses one line at a time; the reader (below) decides what to keep.
 class CarmenParser {
  public:
-  explicit CarmenParser(const std::string& path) : path_(path) {}
+  // `front_laser`: what the log's PARAMs say of its FLASER laser, as far as
+  // they are known (the reader's second pass knows them all from its first).
+  explicit CarmenParser(const std::string& path, FrontLaserParams front_laser = {})
+      : path_(path), front_laser_(front_laser) {}
 
   [[noreturn]] void fail(const std::string& problem) const {
     throw InputError("CARMEN log '" + path_ + "' line " +
@@ -245,9 +248,10 @@ class CarmenParser {
     s.odometry = Pose2D(number(f, o + 3, "odom_x"), number(f, o + 4, "odom_y"),
                         wrap_angle(number(f, o + 5, "odom_theta")));
     s.timestamp = number(f, o + 6, "the timestamp");
-    const double res = flaser_resolution(n);
-    s.angle_min = static_cast<float>(-M_PI / 2.0);
-    s.angle_increment = static_cast<float>(res);
+    const auto [first, step] =
+        flaser_angles(n, front_laser_, [this](const std::string& m) { fail(m); });
+    s.angle_min = static_cast<float>(first);
+    s.angle_increment = static_cast<float>(step);
     return s;
   }
 
@@ -345,7 +349,8 @@ class CarmenStream : public LogStream {
     dead_beams_ = stats.dead_beams();
     laser_offset_ = parser.laser_offset();
     front_laser_ = parser.front_laser();
-    // PARAMs that no scan of the log could span fail here, before any step.
+    // PARAMs no scan of the log could span fail here, before any step, even
+    // where they come after the scans (the second pass applies them).
     if (use_flaser) flaser_angles(stats.first.size(), front_laser_, [&](const std::string& m) {
         throw InputError("CARMEN log '" + path + "': " + m);
       });
@@ -355,7 +360,7 @@ class CarmenStream : public LogStream {
     if (!in_) {
       if (handed_ > 0) return false;  // ended
       in_ = std::make_unique<detail::LineReader>(source(), "CARMEN log");
-      parser_ = std::make_unique<CarmenParser>(source());
+      parser_ = std::make_unique<CarmenParser>(source(), front_laser_);
     }
     RawScan s;
     std::string_view line;
@@ -380,14 +385,6 @@ class CarmenStream : public LogStream {
     scan.timestamp = s.timestamp;
     scan.angle_min = s.angle_min;
     scan.angle_increment = s.angle_increment;
-    if (kind_ == CarmenParser::Kind::kFlaser) {
-      const auto [first, step] = flaser_angles(
-          s.ranges.size(), front_laser_, [&](const std::string& m) {
-            throw InputError("CARMEN log '" + source() + "': " + m);
-          });
-      scan.angle_min = static_cast<float>(first);
-      scan.angle_increment = static_cast<float>(step);
-    }
     scan.max_range = max_range_;
     scan.sensor_pose = s.sensor_pose.value_or(Pose2D(laser_offset_, 0, 0));
     scan.valid.resize(s.ranges.size());
