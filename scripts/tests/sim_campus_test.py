@@ -32,6 +32,28 @@ def read(prefix):
     return scans, odo, stamps, ref
 
 
+def read_robotlaser(prefix, first, fov, spacing):
+    """The scans and odometry of a ROBOTLASER1 log (each line's first bearing,
+    field of view and beam spacing checked, in radians to the 6 decimals
+    written, and the laser at the robot), and the reference poses."""
+    scans, odo = [], []
+    with gzip.open(prefix + ".log.gz", "rt") as f:
+        for line in f:
+            s = line.split()
+            assert s[0] == "ROBOTLASER1", line[:40]
+            n = int(s[8])
+            assert len(s) == n + 24, len(s)  # no remissions
+            for k, want in ((2, first), (3, fov), (4, spacing)):
+                assert round(float(s[k]) - want, 6) == 0, (k, s[k], want)
+            scans.append([float(v) for v in s[9:9 + n]])
+            o = 10 + n
+            assert s[o:o + 3] == s[o + 3:o + 6], line[:40]  # the laser at the robot
+            odo.append([float(v) for v in s[o + 3:o + 6]])
+    with gzip.open(prefix + ".reference.txt.gz", "rt") as f:
+        ref = [[float(v) for v in line.split()] for line in f]
+    return scans, odo, ref
+
+
 class SimCampus(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -88,26 +110,13 @@ class SimCampus(unittest.TestCase):
         prefix = os.path.join(self.dir.name, "wide")
         subprocess.run([sys.executable, SCRIPT, prefix, "--seed", "3", "--fov", "360"],
                        check=True, capture_output=True)
-        scans, odo = [], []
-        with gzip.open(prefix + ".log.gz", "rt") as f:
-            for line in f:
-                s = line.split()
-                self.assertEqual(s[0], "ROBOTLASER1")
-                n = int(s[8])
-                self.assertEqual(len(s), n + 24)  # no remissions
-                self.assertAlmostEqual(float(s[2]), -math.pi, places=5)  # first bearing
-                self.assertAlmostEqual(float(s[3]), 2 * math.pi, places=5)  # field of view
-                self.assertAlmostEqual(float(s[4]), math.radians(1), places=5)  # beam spacing
-                scans.append([float(v) for v in s[9:9 + n]])
-                o = 10 + n
-                self.assertEqual(s[o:o + 3], s[o + 3:o + 6])  # the laser at the robot
-                odo.append([float(v) for v in s[o + 3:o + 6]])
+        # A full turn from -180 degrees, a beam a degree.
+        scans, odo, ref = read_robotlaser(prefix, -math.pi, 2 * math.pi, math.radians(1))
         fair_scans, fair_odo, _, fair_ref = self.out["fair"]
         self.assertTrue(all(len(s) == 360 for s in scans))
         # The same tour and odometry; only the range noise is drawn anew.
         self.assertEqual(odo, fair_odo)
-        with gzip.open(prefix + ".reference.txt.gz", "rt") as f:
-            self.assertEqual([[float(v) for v in line.split()] for line in f], fair_ref)
+        self.assertEqual(ref, fair_ref)
         # Beams at bearings -90..90 degrees are the 180 degree log's.
         agree = total = 0
         for wide, front in zip(scans[::10], fair_scans[::10]):
