@@ -128,7 +128,7 @@ struct Access {
       if (f.step_) throw Error(ExitCode::kInternal, "checkpoint in the middle of a metric step");
     // The seed too: each hypothesis reseeds its copy (GridRbpf::reseed).
     ar(f.opt_.seed, f.rng_, f.particles_, f.last_scan_, f.pending_motion_, f.stats_,
-       f.last_log_evidence_, f.blind_cov_);
+       f.last_log_evidence_, f.blind_cov_, f.blind_trace_, f.trace_steps_);
   }
 
   template <class A>
@@ -345,7 +345,7 @@ void serialize(A& ar, ClosureReport& c) {
 namespace hmt::hybrid {
 template <class A>
 void serialize(A& ar, TrajectorySegment& s) {
-  ar(s.area, s.first_step, s.poses);
+  ar(s.area, s.first_step, s.poses, s.blind);
 }
 template <class A>
 void serialize(A& ar, TransitionEvent& e) {

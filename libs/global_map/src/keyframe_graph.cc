@@ -238,6 +238,15 @@ std::optional<Box> global_box(const grid::OccupancyGrid& g, const Pose2D& pose) 
   return b;
 }
 
+// The information of diag(std_xy^2, std_xy^2, std_theta^2) + extra.
+Eigen::Matrix3d widened_information(double std_xy, double std_theta,
+                                    const Eigen::Matrix3d& extra) {
+  Eigen::Matrix3d cov = Eigen::Vector3d(std_xy * std_xy, std_xy * std_xy,
+                                        std_theta * std_theta).asDiagonal();
+  cov += 0.5 * (extra + extra.transpose());
+  return cov.inverse();
+}
+
 // The information of a match: the matcher's Hessian divided by the
 // inflation, turned into a covariance (directions it does not constrain
 // kept finite), plus the floor.
@@ -382,18 +391,30 @@ class Graph {
  private:
   int node_var(size_t i) const { return static_cast<int>(area_ids_.size() + i); }
 
+  // The blind error of keyframe i's pose in its area (zero for most).
+  Eigen::Matrix3d blind_of(size_t i) const {
+    const KeyframeNode& n = nodes_[i];
+    const AreaVisit& v = visits_[n.visit];
+    return v.blind.empty() ? Eigen::Matrix3d::Zero()
+                           : v.blind[static_cast<size_t>(n.step - v.first_step)];
+  }
+
   void build_fixed_edges() {
+    blind_.assign(nodes_.size(), 0);
     for (size_t i = 0; i < nodes_.size(); ++i) {
       const KeyframeNode& n = nodes_[i];
+      const Eigen::Matrix3d blind = blind_of(i);
+      blind_[i] = !blind.isZero(0.0);
       // (a) the keyframe in its area's frame.
       const double d = n.in_area.norm();
       Edge a;
       a.from = area_var_.at(n.area);
       a.to = node_var(i);
       a.mean = n.in_area;
-      a.information =
-          diagonal_information(opt_.in_area_std_xy + opt_.in_area_std_xy_per_metre * d,
-                               opt_.in_area_std_theta + opt_.in_area_std_theta_per_metre * d);
+      const double axy = opt_.in_area_std_xy + opt_.in_area_std_xy_per_metre * d;
+      const double ath = opt_.in_area_std_theta + opt_.in_area_std_theta_per_metre * d;
+      a.information = blind_[i] ? widened_information(axy, ath, blind)
+                                : diagonal_information(axy, ath);
       a.kind = Kind::kInArea;
       fixed_.push_back(a);
       // (b) the motion from the previous keyframe.
@@ -403,6 +424,12 @@ class Graph {
       b.from = node_var(i - 1);
       b.to = node_var(i);
       b.mean = m.relative;
+      // Across blind steps too: their motion is the odometry's, whose error
+      // is a fraction of the motion model's noise (wide on purpose, so that
+      // the proposal reaches the true pose). Widened by that noise, the
+      // motion held a 200-scan blind stretch of Intel no better than its
+      // ties to the area, and it stayed as dead-reckoned (6.55 m position
+      // RMSE over the log against 4.73 m).
       b.information = diagonal_information(
           opt_.step_std_xy + opt_.step_std_xy_per_metre * m.distance,
           opt_.step_std_theta + opt_.step_std_theta_per_metre * m.distance +
@@ -513,7 +540,9 @@ class Graph {
     std::optional<metric_slam::MatchScan> ready;
     double pts_resolution = 0.0;
     for (size_t a = 0; a < A; ++a) {
-      if (area_ids_[a] == nodes_[i].area && !own_areas) continue;
+      // Its own area's grid was drawn at the very poses a blind stretch put
+      // it at: matched there, it would hold the stretch as it is.
+      if (area_ids_[a] == nodes_[i].area && (!own_areas || blind_[i])) continue;
       if (!boxes[a] || !boxes[a]->holds(g)) continue;
       const grid::OccupancyGrid& grid = *map_.area(area_ids_[a]).map;
       if (grid.resolution() != pts_resolution) {
@@ -606,6 +635,7 @@ class Graph {
   std::map<AreaId, int> area_var_;
   std::vector<AreaId> unreachable_;
   std::vector<Edge> fixed_;  // (a), (b), (c): the same in every round
+  std::vector<char> blind_;  // per keyframe: its pose carries a blind error
   std::vector<std::vector<PastMatch>> past_;  // per keyframe, the last round's matches
   std::vector<Pose2D> x_;    // areas, then keyframes
   KeyframeGraphReport report_;

@@ -358,6 +358,7 @@ std::vector<Hypothesis> HybridFilter::branch(Hypothesis parent,
   seg->area = c;
   seg->first_step = parent.area_start_step;
   seg->poses = bp.estimates;
+  seg->blind = f.blind_trace();
   parent.trajectory.push_back(std::move(seg));
   // The snapshot's robot pose in the AAM frame (the known-area outcomes
   // place the robot as it was then).
@@ -769,6 +770,7 @@ std::vector<TrajectorySegment> HybridFilter::final_trajectory() const {
   cur.area = h.current_area();
   cur.first_step = h.area_start_step;
   cur.poses = h.filter.best().estimates;
+  cur.blind = h.filter.blind_trace();
   out.push_back(std::move(cur));
   return out;
 }

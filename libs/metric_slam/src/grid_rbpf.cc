@@ -41,6 +41,7 @@ void GridRbpf::initialise(const LogStep& step) {
   p.estimates.push_back(p.pose);
   // Every particle starts from the same map: the copies share its tiles.
   particles_.assign(static_cast<size_t>(opt_.particles), p);
+  reset_blind();
 }
 
 void GridRbpf::maybe_insert(Particle& p, const LaserScan& scan) {
@@ -130,6 +131,7 @@ bool GridRbpf::begin_step(const LogStep& input) {
       p.path.push_back(p.pose + pending_motion_);
       p.estimates.push_back(p.estimates.back() + input.odometry_increment);
     }
+    record_blind();
     ++stats_.skipped_steps;
     return false;
   }
@@ -347,9 +349,28 @@ void GridRbpf::add_blind_step() {
   blind_cov_.diagonal() += Eigen::Vector3d(q.xy * q.xy, q.xy * q.xy, q.theta * q.theta);
 }
 
+void GridRbpf::record_blind() {
+  // Only once a step has been blind does the trace hold matrices: until
+  // then it stands for trace_steps_ zeros.
+  if (blind_trace_.empty() && blind_cov_.isZero(0.0)) {
+    ++trace_steps_;
+    return;
+  }
+  if (blind_trace_.empty()) blind_trace_.assign(trace_steps_, Eigen::Matrix3d::Zero());
+  blind_trace_.push_back(blind_cov_);
+  ++trace_steps_;
+}
+
+void GridRbpf::reset_blind() {
+  blind_cov_.setZero();
+  blind_trace_.clear();
+  trace_steps_ = 1;
+}
+
 void GridRbpf::end_step() {
   if (!step_) return;
   if (!step_->can_weigh && opt_.proposal == ProposalKind::kOptimal) add_blind_step();
+  record_blind();
   stats_.particle_moves += step_->fell_back.size();
   for (char f : step_->fell_back) stats_.odometry_fallbacks += (f != 0);
   std::vector<double> after(particles_.size());
@@ -428,9 +449,6 @@ std::vector<Pose2D> GridRbpf::start_new_area(const std::vector<SeedScan>& seeds,
     throw Error(ExitCode::kInternal, "start_new_area() before the first scan");
   if (seed_particle >= particles_.size())
     throw Error(ExitCode::kInternal, "start_new_area(): no such particle");
-  // The new area's frame is the robot's pose now: the error so far is the
-  // arc's (the caller has read blind_cov()).
-  blind_cov_.setZero();
   const Particle& sp = particles_[seed_particle];
   for (const SeedScan& s : seeds)
     if (!s.scan || s.path_index >= sp.path.size())
@@ -453,6 +471,9 @@ std::vector<Pose2D> GridRbpf::start_new_area(const std::vector<SeedScan>& seeds,
     p.last_insertion = p.pose;
     p.inserted = true;
   }
+  // The new area's frame is the robot's pose now: the error so far is the
+  // arc's (the caller has read blind_cov()).
+  reset_blind();
   return origins;
 }
 
@@ -468,7 +489,7 @@ void GridRbpf::load_area(const grid::OccupancyGrid& map, const std::vector<Pose2
   if (particles_.empty())
     throw Error(ExitCode::kInternal, "load_area() before the first scan");
   // The poses come from a match in the known area: it located the robot.
-  blind_cov_.setZero();
+  reset_blind();
   if (poses.size() != 1 && poses.size() != particles_.size())
     throw Error(ExitCode::kInternal, "load_area(): need one pose or one per particle");
   // Without the last scan, particles that find nothing to match all fall
@@ -505,7 +526,7 @@ void GridRbpf::load_area(const grid::OccupancyGrid& map, const std::vector<Pose2
 }
 
 void GridRbpf::restart(const grid::OccupancyGrid& map, const Pose2D& pose) {
-  blind_cov_.setZero();
+  reset_blind();
   Particle p;
   p.map = map;
   p.pose = pose;

@@ -194,6 +194,7 @@ TEST(GridRbpf, AStretchWithoutReturnsKeepsTheErrorTheParticlesDoNotSpread) {
   GridRbpf f(small_filter(2));
   for (size_t i = 0; i < first; ++i) f.process(run.log.steps[i]);
   EXPECT_TRUE(f.blind_cov().isZero());
+  EXPECT_TRUE(f.blind_trace().empty());  // no step blind yet: nothing held
   // The heading's variance grows by the model's at every processed step.
   double heading = 0.0;
   size_t grew = 0;
@@ -215,8 +216,23 @@ TEST(GridRbpf, AStretchWithoutReturnsKeepsTheErrorTheParticlesDoNotSpread) {
   // Scans again: the error stays until an area begins, which takes it.
   f.process(run.log.steps[last + 1]);
   EXPECT_EQ(f.blind_cov().trace(), trace);
+  // The trace: blind_cov() at every step of the paths, zero before the
+  // stretch (skipped steps too), as it stood after each step in it.
+  const std::vector<Eigen::Matrix3d>& t = f.blind_trace();
+  ASSERT_EQ(t.size(), f.best().path.size());
+  ASSERT_EQ(t.size(), f.best().estimates.size());
+  EXPECT_TRUE(t[first - 1].isZero());
+  EXPECT_EQ(t.back(), f.blind_cov());
+  EXPECT_EQ(t[last](2, 2), heading);
+  for (size_t i = first; i <= last; ++i) EXPECT_GE(t[i](2, 2), t[i - 1](2, 2)) << "step " << i;
   f.start_new_area();
   EXPECT_TRUE(f.blind_cov().isZero());
+  EXPECT_TRUE(f.blind_trace().empty());
+  // Blind steps in the new area: the trace holds every step of it.
+  for (size_t i = first; i < first + 4; ++i) f.process(run.log.steps[i]);
+  ASSERT_FALSE(f.blind_trace().empty());
+  EXPECT_EQ(f.blind_trace().size(), f.best().path.size());
+  EXPECT_TRUE(f.blind_trace().front().isZero());
 }
 
 TEST(RbpfOptions, BadHeadingSearchValuesAreConfigErrorsNamingTheKey) {

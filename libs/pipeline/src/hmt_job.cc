@@ -308,7 +308,7 @@ HmtJobSummary run_hmt_job(const JobOptions& opt, InputSteps& steps, const LogOpe
     pose_method = "shortest_path";
   }
   std::vector<global_map::AreaVisit> visits;
-  for (const auto& s : segments) visits.push_back({s.area, s.first_step, s.poses});
+  for (const auto& s : segments) visits.push_back({s.area, s.first_step, s.poses, s.blind});
   // Of the steps, the graph reads only the keyframes' scans, and the MRPT
   // outputs those of their keyframes (the graph's, or visit_keyframes() if
   // the graph fails); which steps those are is known only now, from the

@@ -37,7 +37,7 @@
 
 namespace hmt::checkpoint {
 
-constexpr uint32_t kCheckpointFormatVersion = 9;
+constexpr uint32_t kCheckpointFormatVersion = 10;
 constexpr size_t kCheckpointHeaderSize = 32;
 inline constexpr char kCheckpointMagic[8] = {'H', 'M', 'T', 'C', 'K', 'P', 'T', '\x1a'};
 

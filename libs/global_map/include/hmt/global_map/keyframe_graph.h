@@ -69,6 +69,15 @@ struct AreaVisit {
   AreaId area = topology::kNoArea;
   uint64_t first_step = 0;
   std::vector<Pose2D> poses;
+  // Per pose, the error that steps moved by the odometry alone (scans too
+  // poor to weigh particles by) have added since the visit began
+  // (metric_slam::GridRbpf::blind_trace()); empty when there is none. Where
+  // it is not zero the pose is no better known in the area's frame than
+  // that: its keyframe's tie to the area is widened by it, and it is not
+  // matched in its own area's grid (drawn at those very poses), so that the
+  // keyframes on either side of the stretch bend it through the odometry's
+  // motion between them instead of the area holding it as dead-reckoned.
+  std::vector<Eigen::Matrix3d> blind;
 };
 
 // The log step `step` (odometry and scan), or nullptr if the log used does

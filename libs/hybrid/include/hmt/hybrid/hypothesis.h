@@ -32,6 +32,10 @@ struct TrajectorySegment {
   topology::AreaId area = topology::kNoArea;
   uint64_t first_step = 0;
   std::vector<Pose2D> poses;
+  // Per pose, the error the steps moved by the odometry alone have added
+  // since the segment began (GridRbpf::blind_trace()); empty when there is
+  // none.
+  std::vector<Eigen::Matrix3d> blind;
 };
 
 struct Hypothesis {

@@ -127,6 +127,10 @@ class GridRbpf {
   // hybrid filter's arcs and TSBI's priors) adds it, or a loop after a
   // blind stretch is searched for within centimetres of a pose metres off.
   const Eigen::Matrix3d& blind_cov() const { return blind_cov_; }
+  // blind_cov() as it stood at each step of the current area: one entry per
+  // entry of a particle's path (and estimates). Empty while no step since
+  // the area began has been blind (all zero), as on most logs.
+  const std::vector<Eigen::Matrix3d>& blind_trace() const { return blind_trace_; }
   // Restarts the random streams from `seed` (a copy that becomes a distinct
   // hypothesis draws its own numbers).
   void reseed(uint64_t seed);
@@ -211,6 +215,11 @@ class GridRbpf {
   // end_step() of a step too few beams could weigh: the motion model's
   // error of the best particle's move, into blind_cov_.
   void add_blind_step();
+  // blind_cov_ at the step just taken, onto blind_trace_.
+  void record_blind();
+  // blind_cov_ zero and the trace one step long, where the paths restart
+  // at one pose.
+  void reset_blind();
   // Groups the particles that start from one pose on one map, into the
   // step under way's members and first.
   void group_same_starts();
@@ -254,6 +263,8 @@ class GridRbpf {
   RbpfStats stats_;
   double last_log_evidence_ = 0.0;
   Eigen::Matrix3d blind_cov_ = Eigen::Matrix3d::Zero();
+  std::vector<Eigen::Matrix3d> blind_trace_;
+  size_t trace_steps_ = 0;  // steps blind_trace_ stands for (it may be empty)
   std::optional<Step> step_;  // between begin_step() and end_step()
 };
 
