@@ -33,6 +33,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from ate import load_poses  # noqa: E402
+from drift import error_stats  # noqa: E402
 from relation_error import errors, relative  # noqa: E402
 
 BINS = [(0, 5), (5, 10), (10, 20), (20, 40), (40, 80), (80, math.inf)]
@@ -85,13 +86,8 @@ def table(rows, floor):
         if sel:
             d = np.array([r[0] for r in sel])
             th = np.array([r[1] for r in sel])
-            xy = np.array([r[2] for r in sel])
-            row.update(mean_length_m=float(d.mean()),
-                       heading_rms_rad=float(np.sqrt(np.mean(th ** 2))),
-                       heading_p95_rad=float(np.percentile(th, 95)),
-                       heading_max_rad=float(th.max()),
-                       position_rms_m=float(np.sqrt(np.mean(xy ** 2))),
-                       position_p95_m=float(np.percentile(xy, 95)))
+            row.update(mean_length_m=float(d.mean()), heading_max_rad=float(th.max()),
+                       **error_stats(th, [r[2] for r in sel]))
             if floor:
                 row["heading_floor_rad"] = floor(float(d.mean()))
         out.append(row)

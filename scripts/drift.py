@@ -28,6 +28,15 @@ from relation_error import errors, relative  # noqa: E402
 BINS = [(2, 5), (5, 10), (10, 20), (20, 40), (40, 80), (80, 160)]
 
 
+def error_stats(heading, position):
+    """RMS and 95th percentile of heading (rad) and position (m) errors."""
+    th, xy = np.asarray(heading, dtype=float), np.asarray(position, dtype=float)
+    return dict(heading_rms_rad=float(np.sqrt(np.mean(th ** 2))),
+                heading_p95_rad=float(np.percentile(th, 95)),
+                position_rms_m=float(np.sqrt(np.mean(xy ** 2))),
+                position_p95_m=float(np.percentile(xy, 95)))
+
+
 def drift(est, ref, stride=3):
     """Per bin: pairs, mean distance, heading and position error RMS and p95."""
     along = np.r_[0.0, np.cumsum(np.hypot(np.diff(ref[:, 1]), np.diff(ref[:, 2])))]
@@ -47,12 +56,7 @@ def drift(est, ref, stride=3):
             dist.append(along[j] - along[i])
         row = {"from_m": lo, "to_m": hi, "pairs": len(th)}
         if th:
-            th, xy = np.array(th), np.array(xy)
-            row.update(mean_distance_m=float(np.mean(dist)),
-                       heading_rms_rad=float(np.sqrt(np.mean(th ** 2))),
-                       heading_p95_rad=float(np.percentile(th, 95)),
-                       position_rms_m=float(np.sqrt(np.mean(xy ** 2))),
-                       position_p95_m=float(np.percentile(xy, 95)))
+            row.update(mean_distance_m=float(np.mean(dist)), **error_stats(th, xy))
         out.append(row)
     return out
 
