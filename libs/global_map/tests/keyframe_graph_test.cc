@@ -339,7 +339,7 @@ TEST(KeyframeGraph, AStretchWithoutReturnsBendsWhereItsErrorIsKnown) {
   // whose poses are right. With the blind error, the stretch's ties to
   // area 2 give way, and the odometry's motion from its start and to area
   // 1's first keyframe bend it towards the truth; without it, area 2 holds
-  // the stretch as the filter left it, metres off at its end.
+  // the stretch as the filter left it, decimetres off towards its end.
   Scenario blind(Pose2D(), diag(0.05, 0.02)), rigid(Pose2D(), diag(0.05, 0.02));
   const AreaVisit& v = blind.visits[1];
   const size_t b1 = v.first_step + v.poses.size() - 1, b0 = b1 - 50;
@@ -352,7 +352,7 @@ TEST(KeyframeGraph, AStretchWithoutReturnsBendsWhereItsErrorIsKnown) {
   EXPECT_LT(bent_rms, 0.5 * held_rms) << "held " << held_rms;
   // Before the stretch, area 2 is placed as well either way.
   EXPECT_LT(position_error(bent.areas.poses.at(2).mean, blind.area2), 0.05);
-  EXPECT_LT(area2_rms_from(bent, blind, 0) , area2_rms_from(held, rigid, 0));
+  EXPECT_LT(area2_rms_from(bent, blind, 0), area2_rms_from(held, rigid, 0));
 }
 
 TEST(KeyframeGraph, AConfidentWrongArcIsDownWeighted) {
