@@ -128,7 +128,7 @@ struct Access {
       if (f.step_) throw Error(ExitCode::kInternal, "checkpoint in the middle of a metric step");
     // The seed too: each hypothesis reseeds its copy (GridRbpf::reseed).
     ar(f.opt_.seed, f.rng_, f.particles_, f.last_scan_, f.pending_motion_, f.stats_,
-       f.last_log_evidence_, f.blind_cov_, f.blind_trace_, f.trace_steps_);
+       f.last_log_evidence_, f.blind_cov_, f.blind_trace_);
   }
 
   template <class A>

@@ -351,20 +351,17 @@ void GridRbpf::add_blind_step() {
 
 void GridRbpf::record_blind() {
   // Only once a step has been blind does the trace hold matrices: until
-  // then it stands for trace_steps_ zeros.
-  if (blind_trace_.empty() && blind_cov_.isZero(0.0)) {
-    ++trace_steps_;
-    return;
+  // then it stands for zeros, one per entry of the paths before this step's.
+  if (blind_trace_.empty()) {
+    if (blind_cov_.isZero(0.0)) return;
+    blind_trace_.assign(particles_.front().path.size() - 1, Eigen::Matrix3d::Zero());
   }
-  if (blind_trace_.empty()) blind_trace_.assign(trace_steps_, Eigen::Matrix3d::Zero());
   blind_trace_.push_back(blind_cov_);
-  ++trace_steps_;
 }
 
 void GridRbpf::reset_blind() {
   blind_cov_.setZero();
   blind_trace_.clear();
-  trace_steps_ = 1;
 }
 
 void GridRbpf::end_step() {

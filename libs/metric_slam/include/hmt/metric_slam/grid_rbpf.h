@@ -215,10 +215,11 @@ class GridRbpf {
   // end_step() of a step too few beams could weigh: the motion model's
   // error of the best particle's move, into blind_cov_.
   void add_blind_step();
-  // blind_cov_ at the step just taken, onto blind_trace_.
+  // blind_cov_ at the step just taken (its entry already on the paths),
+  // onto blind_trace_.
   void record_blind();
-  // blind_cov_ zero and the trace one step long, where the paths restart
-  // at one pose.
+  // blind_cov_ zero and the trace empty, where the paths restart at one
+  // pose.
   void reset_blind();
   // Groups the particles that start from one pose on one map, into the
   // step under way's members and first.
@@ -264,7 +265,6 @@ class GridRbpf {
   double last_log_evidence_ = 0.0;
   Eigen::Matrix3d blind_cov_ = Eigen::Matrix3d::Zero();
   std::vector<Eigen::Matrix3d> blind_trace_;
-  size_t trace_steps_ = 0;  // steps blind_trace_ stands for (it may be empty)
   std::optional<Step> step_;  // between begin_step() and end_step()
 };
 
