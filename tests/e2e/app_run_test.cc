@@ -56,9 +56,11 @@ TEST(AppRun, MalagaOneLoopMatchesIndependentReference) {
   EXPECT_LT(std::fabs(wrap_angle(got.theta - ref.theta)), 0.03);
   EXPECT_NEAR(summary["final_pose"]["x"].get<double>(), got.x, 1e-5);
   // The metric filter's scans matched their maps: hardly a particle-step
-  // fell back to the odometry, and the run gave no warning about it.
+  // fell back to the odometry, and the run gave no warning about it. The
+  // log's scans lie 0.33 m apart (median), so at the 0.5 m spacing the
+  // filter takes every other scan on the straights and every scan in turns.
   const auto& m = summary["metric_slam"];
-  EXPECT_GT(m["scans_filtered"].get<int>(), 150);
+  EXPECT_GT(m["scans_filtered"].get<int>(), 225 / 2);
   EXPECT_LE(m["scans_filtered"].get<int>(), 225);
   EXPECT_GE(m["particle_moves"].get<int>(), (m["scans_filtered"].get<int>() - 1) * 10);
   EXPECT_LT(m["odometry_fallback_fraction"].get<double>(), 0.01);

@@ -21,11 +21,15 @@ testing_sim::SimRun loop_run(uint64_t seed) {
                                0.3, seed, 0.08);
 }
 
+// The simulated logs step 0.3 m: these tests are of what the filter does
+// at a step, so it filters every one (the default spacing, 0.5 m, would skip
+// every other; ScansCloserThanTheSpacingAreNotWeighedAgain tests it).
 RbpfOptions small_filter(int threads) {
   RbpfOptions o;
   o.particles = 10;
   o.threads = threads;
   o.seed = 5;
+  o.update_distance = 0.05;
   return o;
 }
 
@@ -50,6 +54,61 @@ TEST(GridRbpf, TracksBetterThanOdometry) {
   EXPECT_GT(s.steps - s.skipped_steps, run.log.steps.size() / 2);
   EXPECT_EQ(s.particle_moves, (s.steps - 1 - s.skipped_steps) * f.particles().size());
   EXPECT_EQ(s.odometry_fallbacks, 0u);
+}
+
+// A scan less than update_distance on from the last filtered one (and
+// turned less than update_angle) is not weighed: the paths go on by the
+// odometry, and the next filtered step moves the particles by all of the
+// motion since. On the 0.3 m loop the default spacing filters about every
+// other scan on the straights and every scan through the turns.
+TEST(GridRbpf, ScansCloserThanTheSpacingAreNotWeighedAgain) {
+  const auto run = loop_run(11);
+  RbpfOptions o = small_filter(2);
+  const RbpfOptions defaults;
+  o.update_distance = defaults.update_distance;
+  o.update_angle = defaults.update_angle;
+  ASSERT_EQ(o.update_distance, 0.5);
+  ASSERT_EQ(o.update_angle, 0.05);
+  GridRbpf f(o);
+  f.process(run.log.steps[0]);
+  Pose2D pending;
+  size_t filtered = 0;
+  for (size_t i = 1; i < run.log.steps.size(); ++i) {
+    const LogStep& st = run.log.steps[i];
+    const size_t skipped = f.stats().skipped_steps;
+    std::vector<Pose2D> poses;
+    for (const Particle& p : f.particles()) poses.push_back(p.pose);
+    f.process(st);
+    pending = pending + st.odometry_increment;
+    const bool due = pending.norm() >= 0.5 || std::fabs(pending.theta) >= 0.05;
+    ASSERT_EQ(f.stats().skipped_steps == skipped, due) << "step " << i;
+    if (due) {
+      pending = Pose2D();
+      ++filtered;
+      continue;
+    }
+    // Skipped: the particles stay where the last filtered step put them,
+    // their paths extended by the odometry since.
+    for (size_t k = 0; k < poses.size(); ++k) {
+      const Particle& p = f.particles()[k];
+      EXPECT_EQ(p.pose.x, poses[k].x);
+      const Pose2D want = poses[k] + pending;
+      EXPECT_NEAR(p.path.back().x, want.x, 1e-12);
+      EXPECT_NEAR(p.path.back().y, want.y, 1e-12);
+      EXPECT_NEAR(wrap_angle(p.path.back().theta - want.theta), 0.0, 1e-12);
+    }
+  }
+  const size_t n = run.log.steps.size() - 1;
+  EXPECT_GT(filtered, n / 3);
+  EXPECT_LT(filtered, 3 * n / 4);
+  EXPECT_EQ(f.stats().particle_moves, filtered * f.particles().size());
+  EXPECT_EQ(f.best().path.size(), run.log.steps.size());
+  // And it still tracks: the loop ends nearer the truth than the odometry.
+  const Pose2D est = run.truth.front() + f.best().pose;
+  const Pose2D odo = testing_sim::dead_reckoning(run);
+  const Pose2D& truth = run.truth.back();
+  EXPECT_LT(std::hypot(est.x - truth.x, est.y - truth.y),
+            0.5 * std::hypot(odo.x - truth.x, odo.y - truth.y));
 }
 
 // A particle moves to a pose drawn from its proposal; its estimates record
