@@ -129,7 +129,11 @@ def raycast(S, x, y, th, rng, fov, per_degree=1):
     return r
 
 
-def odometry(poses, rng, harsh):
+def odometry(poses, rng, harsh, per_step=1.0):
+    """Odometry along `poses`. `per_step` scales the noise each step adds
+    whatever its length (the scale noise, the constant part of the heading
+    noise): sqrt(step / nominal step) keeps their sum over a metre as it is
+    when the scans are denser than the nominal step."""
     scale, drift = (0.02, 0.004) if harsh else (0.01, 0.001)
     odo = [np.zeros(3)]
     for k in range(1, len(poses)):
@@ -139,9 +143,9 @@ def odometry(poses, rng, harsh):
         lx, ly = c * dx + s * dy, -s * dx + c * dy
         dth = math.atan2(math.sin(b[2] - a[2]), math.cos(b[2] - a[2]))
         d = math.hypot(lx, ly)
-        lx *= 1 + scale + rng.normal(0, 0.02 + 0.01 * harsh)
+        lx *= 1 + scale + rng.normal(0, (0.02 + 0.01 * harsh) * per_step)
         ly += rng.normal(0, (0.01 + 0.01 * harsh) * d)
-        dth += rng.normal(0, (0.005 + 0.005 * harsh) + (0.03 + 0.02 * harsh) * abs(dth)) + drift * d
+        dth += rng.normal(0, (0.005 + 0.005 * harsh) * per_step + (0.03 + 0.02 * harsh) * abs(dth)) + drift * d
         o = odo[-1]
         co, so = math.cos(o[2]), math.sin(o[2])
         odo.append(np.array([o[0] + co * lx - so * ly, o[1] + so * lx + co * ly, o[2] + dth]))

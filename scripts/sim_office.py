@@ -14,15 +14,18 @@ office buildings: the aliasing a loop closure must not fall for.
 The robot walks the corridors from crossing to crossing (never straight
 back), looks into a passing room now and then (drives in, turns round, and
 out again), and stops after --length metres. A scan every 0.5 m or 0.25 rad
-of turn; the laser, the odometry's noise and the files written are those of
-scripts/sim_campus.py (a 180 degree laser of 181 beams reaching 80 m, range
-noise 2 cm; fair or harsh odometry).
+of turn (--step M: every M metres or M / 2 rad, e.g. 0.05 for a log recorded
+as a robot's laser runs, not thinned; one scan every 0.1 s of the log's
+clock then, else 0.5 s); the laser, the odometry's noise and the files
+written are those of scripts/sim_campus.py (a 180 degree laser of 181 beams
+reaching 80 m, range noise 2 cm; fair or harsh odometry, its per-step noise
+scaled by sqrt(M / 0.5) so that a metre of it is as noisy at any step).
 
 Outputs OUT.log.gz (CARMEN FLASER lines) and OUT.reference.txt.gz (the true
 poses, "t x y theta" per scan, for scripts/ate.py).
 
 Usage: sim_office.py OUT [--seed N] [--odometry fair|harsh] [--length M]
-                     [--beams-per-degree N]
+                     [--beams-per-degree N] [--step M]
 """
 import argparse
 import math
@@ -175,6 +178,7 @@ def walk(floor, rng, length):
 
 
 def main():
+    global STEP, TURN  # walk() steps by them
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("out")
     ap.add_argument("--seed", type=int, default=1)
@@ -183,16 +187,22 @@ def main():
                     help="the walk's length (m) before it stops, at the next crossing")
     ap.add_argument("--beams-per-degree", type=int, default=1,
                     help="the laser's beams a degree (4: a 0.25 degree scanner)")
+    ap.add_argument("--step", type=float, default=STEP,
+                    help="a scan every this many metres (or half as many radians of turn)")
     a = ap.parse_args()
     if a.beams_per_degree < 1:
         ap.error("--beams-per-degree must be at least 1")
     if not a.length > 0:
         ap.error("--length must be positive")
+    if not 0.01 <= a.step <= 2.0:
+        ap.error("--step must lie in [0.01, 2] m")
+    STEP, TURN = a.step, a.step / 2
     rng = np.random.default_rng(a.seed)
     floor = Floor(rng)
     poses = walk(floor, rng, a.length)
-    odo = odometry(poses, rng, a.odometry == "harsh")
-    path = write_log(a.out, floor.segs, poses, odo, rng, 180, 0.5, a.beams_per_degree)
+    odo = odometry(poses, rng, a.odometry == "harsh", math.sqrt(a.step / 0.5))
+    period = 0.5 if a.step >= 0.5 else 0.1
+    path = write_log(a.out, floor.segs, poses, odo, rng, 180, period, a.beams_per_degree)
     print("%d scans, %d wall segments, %d open doors, path %.0f m: %s.log.gz, %s.reference.txt.gz"
           % (len(poses), len(floor.segs), len(floor.doors), path, a.out, a.out))
 

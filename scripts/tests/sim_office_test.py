@@ -108,6 +108,29 @@ class SimOffice(unittest.TestCase):
                     agree += abs(a - b) < 0.15
         self.assertGreater(agree, 0.99 * total)
 
+    def test_a_finer_step_records_a_scan_every_step_on_a_finer_clock(self):
+        prefix = os.path.join(self.dir.name, "dense")
+        subprocess.run([sys.executable, SCRIPT, prefix, "--seed", "2", "--length", "60",
+                        "--step", "0.1"], check=True, capture_output=True)
+        scans, odo, stamps, ref = read(prefix)
+        self.assertEqual(len(scans), len(ref))
+        steps = [math.hypot(b[1] - a[1], b[2] - a[2]) for a, b in zip(ref, ref[1:])]
+        self.assertLessEqual(max(steps), 0.1 + 1e-6)
+        self.assertGreater(float(np.median([d for d in steps if d > 0])), 0.09)
+        self.assertAlmostEqual(stamps[1] - stamps[0], 0.1)
+        # The odometry's error over the walk is of the 0.5 m log's size, not
+        # sqrt(5) times it: its per-step noise is scaled down.
+        end = np.array(odo[-1][:2]) - np.array(ref[-1][1:3]) + np.array(ref[0][1:3])
+        self.assertLess(float(np.hypot(*end)), 3.0)
+
+    def test_a_step_out_of_range_is_refused(self):
+        for step in ("0", "5"):
+            r = subprocess.run([sys.executable, SCRIPT, os.path.join(self.dir.name, "z"),
+                                "--step", step], capture_output=True, text=True)
+            self.assertNotEqual(r.returncode, 0)
+            self.assertIn("--step", r.stderr)
+            self.assertFalse(os.path.exists(os.path.join(self.dir.name, "z.log.gz")))
+
     def test_fewer_than_one_beam_a_degree_is_refused(self):
         r = subprocess.run([sys.executable, SCRIPT, os.path.join(self.dir.name, "y"),
                             "--beams-per-degree", "0"], capture_output=True, text=True)
