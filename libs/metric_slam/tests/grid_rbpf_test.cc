@@ -56,8 +56,9 @@ TEST(GridRbpf, TracksBetterThanOdometry) {
   EXPECT_EQ(s.odometry_fallbacks, 0u);
 }
 
-// A scan less than update_distance on from the last filtered one (and
-// turned less than update_angle) is not weighed: the paths go on by the
+// A scan nearer the last filtered one than update_distance (within half its
+// own step of it: the scan nearest the spacing is the one filtered) and
+// turned less than update_angle is not weighed: the paths go on by the
 // odometry, and the next filtered step moves the particles by all of the
 // motion since. On the 0.3 m loop the default spacing filters about every
 // other scan on the straights and every scan through the turns.
@@ -80,7 +81,8 @@ TEST(GridRbpf, ScansCloserThanTheSpacingAreNotWeighedAgain) {
     for (const Particle& p : f.particles()) poses.push_back(p.pose);
     f.process(st);
     pending = pending + st.odometry_increment;
-    const bool due = pending.norm() >= 0.5 || std::fabs(pending.theta) >= 0.05;
+    const bool due = pending.norm() >= 0.5 - 0.5 * st.odometry_increment.norm() ||
+                     std::fabs(pending.theta) >= 0.05;
     ASSERT_EQ(f.stats().skipped_steps == skipped, due) << "step " << i;
     if (due) {
       pending = Pose2D();
@@ -109,6 +111,23 @@ TEST(GridRbpf, ScansCloserThanTheSpacingAreNotWeighedAgain) {
   const Pose2D& truth = run.truth.back();
   EXPECT_LT(std::hypot(est.x - truth.x, est.y - truth.y),
             0.5 * std::hypot(odo.x - truth.x, odo.y - truth.y));
+}
+
+// A log thinned to steps a little short of the spacing (0.48 m) is filtered
+// whole: the scan nearest each half metre is filtered, not the first past it
+// (which would take every other scan, a metre apart).
+TEST(GridRbpf, ALogThinnedToAboutTheSpacingIsFilteredWhole) {
+  const auto run = testing_sim::simulate({{2, 2, 0}, {2 + 30 * 0.48, 2, 0}}, 0.48, 3, 0.01);
+  RbpfOptions o = small_filter(1);
+  o.update_distance = RbpfOptions().update_distance;
+  ASSERT_EQ(o.update_distance, 0.5);
+  GridRbpf f(o);
+  for (const auto& st : run.log.steps) {
+    ASSERT_LT(st.odometry_increment.norm(), 0.5);
+    f.process(st);
+  }
+  EXPECT_EQ(run.log.steps.size(), 31u);
+  EXPECT_EQ(f.stats().skipped_steps, 0u);
 }
 
 // A particle moves to a pose drawn from its proposal; its estimates record

@@ -90,8 +90,9 @@ class GridRbpf {
 
   // One odometry increment followed by one scan. The first call initialises
   // every particle at the origin with the scan as its map. A scan taken
-  // before the robot moved update_distance / update_angle since the last
-  // filtered scan only extends the paths by odometry.
+  // before the robot moved update_distance (less half the scan's own step)
+  // or turned update_angle since the last filtered scan only extends the
+  // paths by odometry.
   void process(const LogStep& step);
 
   // process() in three parts, so that one parallel loop can move the

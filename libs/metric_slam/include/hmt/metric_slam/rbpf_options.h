@@ -21,9 +21,10 @@ struct RbpfOptions {
   ProposalKind proposal = ProposalKind::kOptimal;
   double resample_threshold = 0.5;  // resample when ESS < this * particles
   // The filter runs on a scan only once the odometry says the robot moved
-  // this far or turned this much since the last filtered scan (scans a few
-  // centimetres apart would weigh the particles by the same evidence again
-  // and again: config/default.ini).
+  // this far (less half the scan's own step: the scan nearest the mark) or
+  // turned this much since the last filtered scan (scans a few centimetres
+  // apart would weigh the particles by the same evidence again and again:
+  // config/default.ini).
   double update_distance = 0.5;
   double update_angle = 0.05;
   // A particle inserts a scan into its map only after moving this far since
