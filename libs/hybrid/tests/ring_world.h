@@ -51,7 +51,7 @@ inline testing_sim::SimRun ring_run(uint64_t seed) {
 // matches every one, as these tests' draws were measured. (At the default
 // spacing, 0.5 m, it matches every other: over ring_run(7..12) the loop
 // then closes at five draws of six, and after the blind stretch of
-// ClosesTheLoopAfterABlindStretch at three, against six and five.)
+// ClosesTheLoopAfterABlindStretch at four, against six and five.)
 inline HmtOptions ring_options() {
   HmtOptions o;
   o.rbpf.particles = 10;
