@@ -41,7 +41,7 @@ BLOCK_W = 30.0       # a block's width (m)
 BLOCK_H = 16.0       # a block's depth: two rows of 8 m rooms
 CORRIDOR = 2.4       # corridor width (m)
 DOOR = 1.0           # door width (m)
-STEP, TURN = 0.5, 0.25  # a scan per this much travel (m) or turn (rad)
+STEP = 0.5  # a scan per this much travel (m), or half as many radians of turn
 
 
 def corridor_x(i):
@@ -133,8 +133,10 @@ class Floor:
                 t += rng.uniform(10, 30)
 
 
-def walk(floor, rng, length):
-    """True poses: crossing to crossing, now and then into a room and out."""
+def walk(floor, rng, length, step=STEP):
+    """True poses: crossing to crossing, now and then into a room and out; a
+    pose every `step` metres, or step / 2 rad of turn on the spot."""
+    turn_step = step / 2
     poses = [(0.0, 0.0, 0.0)]
     node, prev = (0, 0), None
     travelled = 0.0
@@ -144,10 +146,10 @@ def walk(floor, rng, length):
         px, py, th = poses[-1]
         want = math.atan2(y - py, x - px)
         turn = math.atan2(math.sin(want - th), math.cos(want - th))
-        for k in range(1, int(abs(turn) / TURN) + 1):  # turn on the spot
-            poses.append((px, py, th + math.copysign(k * TURN, turn)))
+        for k in range(1, int(abs(turn) / turn_step) + 1):  # turn on the spot
+            poses.append((px, py, th + math.copysign(k * turn_step, turn)))
         d = math.hypot(x - px, y - py)
-        n = max(1, math.ceil(d / STEP))
+        n = max(1, math.ceil(d / step))
         for k in range(1, n + 1):
             poses.append((px + (x - px) * k / n, py + (y - py) * k / n,
                           want + rng.normal(0, 0.01)))
@@ -178,7 +180,6 @@ def walk(floor, rng, length):
 
 
 def main():
-    global STEP, TURN  # walk() steps by them
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("out")
     ap.add_argument("--seed", type=int, default=1)
@@ -196,10 +197,9 @@ def main():
         ap.error("--length must be positive")
     if not 0.01 <= a.step <= 2.0:
         ap.error("--step must lie in [0.01, 2] m")
-    STEP, TURN = a.step, a.step / 2
     rng = np.random.default_rng(a.seed)
     floor = Floor(rng)
-    poses = walk(floor, rng, a.length)
+    poses = walk(floor, rng, a.length, a.step)
     odo = odometry(poses, rng, a.odometry == "harsh", math.sqrt(a.step / 0.5))
     period = 0.5 if a.step >= 0.5 else 0.1
     path = write_log(a.out, floor.segs, poses, odo, rng, 180, period, a.beams_per_degree)
