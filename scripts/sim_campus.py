@@ -15,12 +15,17 @@ of 0.001 (fair) or 0.004 (harsh) rad per metre.
 --beams-per-degree N: N beams a degree instead of one (4: a 0.25 degree
 scanner).
 
+--step M: a scan every M metres or less (e.g. 0.1: a 10 Hz laser at 1 m/s),
+the same drive with each of its steps cut into equal parts, on a clock of
+2 M seconds; the odometry's per-step noise is scaled by sqrt(M), so that a
+metre of it is as noisy at any step.
+
 Outputs OUT.log.gz (CARMEN FLASER lines; ROBOTLASER1 with --fov 360 or
 more than a beam a degree) and OUT.reference.txt.gz (the true poses,
 "t x y theta" per scan, for scripts/ate.py).
 
 Usage: sim_campus.py OUT [--seed N] [--odometry fair|harsh] [--fov 180|360]
-                     [--beams-per-degree N]
+                     [--beams-per-degree N] [--step M]
 """
 import argparse
 import gzip
@@ -100,6 +105,19 @@ def drive(rng):
             p = p + step * np.array([math.cos(th), math.sin(th)])
             poses.append((p[0], p[1], th))
     return np.array(poses)
+
+
+def densify(poses, step):
+    """`poses` with each step cut into ceil(length / step) equal parts, the
+    heading turning evenly along it (the drive's steps turn as they go)."""
+    out = [poses[0]]
+    for a, b in zip(poses[:-1], poses[1:]):
+        n = max(1, math.ceil(math.hypot(b[0] - a[0], b[1] - a[1]) / step - 1e-9))
+        turn = math.atan2(math.sin(b[2] - a[2]), math.cos(b[2] - a[2]))
+        for k in range(1, n + 1):
+            f = k / n
+            out.append((a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1]), a[2] + f * turn))
+    return np.array(out)
 
 
 def bearings(fov, per_degree=1):
@@ -187,15 +205,24 @@ def main():
                          "360 (ROBOTLASER1 lines), a beam a degree")
     ap.add_argument("--beams-per-degree", type=int, default=1,
                     help="the laser's beams a degree (4: a 0.25 degree scanner)")
+    ap.add_argument("--step", type=float, default=None,
+                    help="a scan every this many metres or less (default: the drive's "
+                         "own steps, 0.5-1.2 m)")
     a = ap.parse_args()
     if a.beams_per_degree < 1:
         ap.error("--beams-per-degree must be at least 1")
+    if a.step is not None and not 0.01 <= a.step <= 1.0:
+        ap.error("--step must lie in [0.01, 1] m")
     rng = np.random.default_rng(a.seed)
     harsh = a.odometry == "harsh"
     S = world(rng, harsh)
     poses = drive(rng)
-    odo = odometry(poses, rng, harsh)
-    length = write_log(a.out, S, poses, odo, rng, a.fov, 2.0, a.beams_per_degree)
+    per_step, period = 1.0, 2.0
+    if a.step is not None:
+        poses = densify(poses, a.step)
+        per_step, period = math.sqrt(a.step), 2.0 * a.step
+    odo = odometry(poses, rng, harsh, per_step)
+    length = write_log(a.out, S, poses, odo, rng, a.fov, period, a.beams_per_degree)
     print("%d scans, %d wall segments, path %.0f m: %s.log.gz, %s.reference.txt.gz"
           % (len(poses), len(S), length, a.out, a.out))
 

@@ -130,6 +130,39 @@ class SimCampus(unittest.TestCase):
         behind = [v for s in scans for v in s[:90] + s[271:] if v < 81]
         self.assertGreater(len(behind), 0.2 * len(scans) * 180)
 
+    def test_a_finer_step_cuts_the_same_drive_on_a_finer_clock(self):
+        prefix = os.path.join(self.dir.name, "dense")
+        subprocess.run([sys.executable, SCRIPT, prefix, "--seed", "3", "--step", "0.5"],
+                       check=True, capture_output=True)
+        scans, odo, stamps, ref = read(prefix)
+        _, _, _, coarse = self.out["fair"]
+        self.assertEqual(len(scans), len(ref))
+        self.assertGreater(len(ref), 1.5 * len(coarse))
+        steps = [math.hypot(b[1] - a[1], b[2] - a[2]) for a, b in zip(ref, ref[1:])]
+        self.assertLessEqual(max(steps), 0.5 + 1e-3)
+        self.assertAlmostEqual(stamps[1] - stamps[0], 1.0)
+        # Every pose of the drive is one of the finer log's, in order.
+        fine = {(round(r[1], 3), round(r[2], 3)) for r in ref}
+        self.assertTrue(all((round(r[1], 3), round(r[2], 3)) in fine for r in coarse))
+        self.assertEqual(ref[-1][1:3], coarse[-1][1:3])
+        # The odometry's heading drifts as the drive's does (0.001 rad a metre;
+        # seeds 3-6: 1.2-1.9 rad both ways), the per-step noise scaled down.
+        def drift(odo, ref):
+            def turned(th):
+                return sum(math.atan2(math.sin(b - a), math.cos(b - a)) for a, b in zip(th, th[1:]))
+            return turned([o[2] for o in odo]) - turned([r[3] for r in ref])
+        fine_drift, coarse_drift = drift(odo, ref), drift(self.out["fair"][1], coarse)
+        self.assertGreater(fine_drift, 1.0)
+        self.assertLess(abs(fine_drift - coarse_drift), 0.5)
+
+    def test_a_step_out_of_range_is_refused(self):
+        for step in ("0", "1.5"):
+            r = subprocess.run([sys.executable, SCRIPT, os.path.join(self.dir.name, "z"),
+                                "--step", step], capture_output=True, text=True)
+            self.assertNotEqual(r.returncode, 0)
+            self.assertIn("--step", r.stderr)
+            self.assertFalse(os.path.exists(os.path.join(self.dir.name, "z.log.gz")))
+
     def test_the_same_seed_writes_the_same_log(self):
         prefix = os.path.join(self.dir.name, "again")
         subprocess.run([sys.executable, SCRIPT, prefix, "--seed", "3"], check=True, capture_output=True)

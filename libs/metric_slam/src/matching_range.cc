@@ -5,8 +5,15 @@
 
 namespace hmt::metric_slam {
 
-void RangeSample::add(const LaserScan& scan) {
+void RangeSample::add(const LaserScan& scan, const Pose2D& odometry_increment) {
   if (complete()) return;
+  ++read_;
+  readings_read_ += scan.size();
+  moved_ = moved_ + odometry_increment;
+  if (scans_ > 0 && within_spacing(moved_, kRangeSampleSpacing - 0.5 * odometry_increment.norm(),
+                                   kRangeSampleTurn))
+    return;
+  moved_ = Pose2D();
   ++scans_;
   for (size_t i = 0; i < scan.size(); ++i) {
     const float r = scan.ranges[i];
@@ -17,7 +24,8 @@ void RangeSample::add(const LaserScan& scan) {
 }
 
 bool RangeSample::complete() const {
-  return scans_ >= kRangeSampleScans || ranges_.size() >= kRangeSampleReturns;
+  return scans_ >= kRangeSampleScans || ranges_.size() >= kRangeSampleReturns ||
+         readings_read_ >= kRangeSamplePeekReadings;
 }
 
 double RangeSample::quantile() const {

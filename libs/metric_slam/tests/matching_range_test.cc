@@ -32,11 +32,15 @@ LaserScan scan_of(size_t n, F range, float max_range = 80.0f) {
   return s;
 }
 
+// A metre on: every scan so spaced joins the sample.
+const Pose2D kMetre(1.0, 0.0, 0.0);
+
 TEST(MatchingRange, IndoorRangesKeepTheFloor) {
   RangeSample sample;
   // Ranges 1..10 m: 80 % within 8 m, below the floor.
   for (int k = 0; k < 5; ++k)
-    sample.add(scan_of(100, [](size_t i) { return 1.0f + 9.0f * static_cast<float>(i) / 99.0f; }));
+    sample.add(scan_of(100, [](size_t i) { return 1.0f + 9.0f * static_cast<float>(i) / 99.0f; }),
+               kMetre);
   EXPECT_NEAR(sample.quantile(), 8.2, 0.1);
   EXPECT_DOUBLE_EQ(sample.matching_range(), kMinMatchingRange);
 }
@@ -45,12 +49,12 @@ TEST(MatchingRange, OutdoorRangesSetItToTheirEightiethPercentile) {
   RangeSample sample;
   // Ranges 0.5, 1.0, ... 50 m: the 80th of 100 is 40 m.
   for (int k = 0; k < 3; ++k)
-    sample.add(scan_of(100, [](size_t i) { return 0.5f * static_cast<float>(i + 1); }));
+    sample.add(scan_of(100, [](size_t i) { return 0.5f * static_cast<float>(i + 1); }), kMetre);
   EXPECT_FLOAT_EQ(sample.quantile(), 40.0f);
   EXPECT_DOUBLE_EQ(sample.matching_range(), 40.0);
   // Rounded up to a whole metre.
   RangeSample odd;
-  odd.add(scan_of(10, [](size_t i) { return 30.25f + static_cast<float>(i); }));
+  odd.add(scan_of(10, [](size_t i) { return 30.25f + static_cast<float>(i); }), kMetre);
   EXPECT_FLOAT_EQ(odd.quantile(), 37.25f);
   EXPECT_DOUBLE_EQ(odd.matching_range(), 38.0);
 }
@@ -65,14 +69,14 @@ TEST(MatchingRange, NoReturnsAndBadReadingsAreNotCounted) {
     if (i % 5 == 1) return nan;
     if (i % 5 == 3) return -1.0f;
     return i % 7 == 0 ? 0.0f : 5.0f;
-  }));
+  }), kMetre);
   ASSERT_GT(sample.returns(), 0u);
   EXPECT_FLOAT_EQ(sample.quantile(), 5.0f);
   // A flag says "invalid" whatever the value.
   LaserScan flagged = scan_of(10, [](size_t) { return 60.0f; });
   flagged.valid.assign(10, 0);
   RangeSample none;
-  none.add(flagged);
+  none.add(flagged, kMetre);
   EXPECT_EQ(none.returns(), 0u);
   EXPECT_DOUBLE_EQ(none.quantile(), 0.0);
   EXPECT_DOUBLE_EQ(none.matching_range(), kMinMatchingRange);
@@ -81,19 +85,61 @@ TEST(MatchingRange, NoReturnsAndBadReadingsAreNotCounted) {
 TEST(MatchingRange, TheSampleStopsAtItsBudget) {
   RangeSample by_scans;
   for (size_t k = 0; k < kRangeSampleScans + 50; ++k)
-    by_scans.add(scan_of(10, [&](size_t) { return k < kRangeSampleScans ? 10.0f : 70.0f; }));
+    by_scans.add(scan_of(10, [&](size_t) { return k < kRangeSampleScans ? 10.0f : 70.0f; }),
+                 kMetre);
   EXPECT_TRUE(by_scans.complete());
   EXPECT_EQ(by_scans.scans(), kRangeSampleScans);
   EXPECT_DOUBLE_EQ(by_scans.matching_range(), kMinMatchingRange);  // the later 70 m unseen
   RangeSample by_returns;
-  by_returns.add(scan_of(kRangeSampleReturns + 10, [](size_t) { return 30.0f; }));
+  by_returns.add(scan_of(kRangeSampleReturns + 10, [](size_t) { return 30.0f; }), kMetre);
   EXPECT_TRUE(by_returns.complete());
   EXPECT_EQ(by_returns.scans(), 1u);
+  // A robot standing still: its first scan, and no more read than the
+  // readings budget.
+  RangeSample still;
+  const LaserScan wide = scan_of(1000, [](size_t) { return 30.0f; });
+  size_t offered = 0;
+  while (!still.complete()) {
+    still.add(wide, Pose2D());
+    ASSERT_LE(++offered, kRangeSamplePeekReadings / 1000);
+  }
+  EXPECT_EQ(still.read(), kRangeSamplePeekReadings / 1000);
+  EXPECT_EQ(still.scans(), 1u);
+  EXPECT_FLOAT_EQ(still.quantile(), 30.0f);
+}
+
+// A log recorded every 10 cm and the same log a scan a metre are sampled at
+// the same places: the first 100 m, not the first 10 m. Ranges grow along
+// the path (a street that opens onto a square), so where the sample ends
+// shows in the range.
+TEST(MatchingRange, ADenseLogIsSampledAtTheSpacingOfAThinnedOne) {
+  const auto at = [](double s) {  // the scan at s metres along the path
+    return scan_of(50, [s](size_t i) { return static_cast<float>(10.0 + 0.4 * s + 0.1 * i); });
+  };
+  RangeSample thinned, dense;
+  for (int k = 0; !thinned.complete(); ++k) thinned.add(at(k), k ? kMetre : Pose2D());
+  for (int k = 0; !dense.complete(); ++k)
+    dense.add(at(0.1 * k), k ? Pose2D(0.1, 0.0, 0.0) : Pose2D());
+  EXPECT_EQ(thinned.scans(), kRangeSampleScans);
+  EXPECT_EQ(dense.scans(), kRangeSampleScans);
+  EXPECT_EQ(dense.read(), 10 * (kRangeSampleScans - 1) + 1);
+  EXPECT_NEAR(dense.quantile(), thinned.quantile(), 0.5);
+  // 44.2 m from the first 100 m; the first 100 scans of the dense log (10 m)
+  // would give 16.1 m.
+  EXPECT_NEAR(thinned.quantile(), 44.2, 0.1);
+  // A log a scan every 0.95 m (steps short of the spacing) is taken whole.
+  RangeSample short_steps;
+  for (int k = 0; k < 20; ++k) short_steps.add(at(0.95 * k), k ? Pose2D(0.95, 0, 0) : Pose2D());
+  EXPECT_EQ(short_steps.scans(), 20u);
+  // Turning on the spot: a scan every half radian.
+  RangeSample turning;
+  for (int k = 0; k < 20; ++k) turning.add(at(0), k ? Pose2D(0, 0, 0.13) : Pose2D());
+  EXPECT_EQ(turning.scans(), 5u);  // every fourth: 0.52 rad on from the last
 }
 
 TEST(MatchingRange, AutoIsTheDefaultAndANumberFixesIt) {
   RangeSample far;
-  far.add(scan_of(100, [](size_t) { return 45.5f; }));
+  far.add(scan_of(100, [](size_t) { return 45.5f; }), kMetre);
   {
     Config cfg;
     RbpfOptions o;
@@ -149,7 +195,7 @@ testing_sim::SimRun drifting_street() {
 std::vector<Pose2D> street_draws(const testing_sim::SimRun& run) {
   RangeSample sample;
   for (const auto& st : run.log.steps)
-    if (!sample.complete()) sample.add(st.scan);
+    if (!sample.complete()) sample.add(st.scan, st.odometry_increment);
   std::vector<Pose2D> ends;
   for (uint64_t seed = 1; seed <= 8; ++seed) {
     RbpfOptions o;

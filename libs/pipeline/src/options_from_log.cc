@@ -20,16 +20,17 @@ void resolve_options_from_log(JobOptions& opt, InputSteps& steps) {
                    opt.area.partition.tau);
     }
     if (ranges_open) {
-      ranges.add(s->scan);
+      ranges.add(s->scan, s->odometry_increment);
       ranges_open = !ranges.complete();
     }
   }
   if (metric_slam::resolve_matching_range(opt.rbpf.matcher, opt.rbpf.insertion, ranges))
     std::fprintf(stderr,
                  "hmt-slam: [scan_matcher] max_range = auto: %.0f m (%.0f %% of the %zu returns "
-                 "of the first %zu scans lie within %.1f m; at least %.0f m)\n",
+                 "of %zu scans a metre apart, the first %zu of the log, lie within %.1f m; at least "
+                 "%.0f m)\n",
                  opt.rbpf.matcher.max_range, 100.0 * metric_slam::kMatchingRangeQuantile,
-                 ranges.returns(), ranges.scans(), ranges.quantile(),
+                 ranges.returns(), ranges.scans(), ranges.read(), ranges.quantile(),
                  metric_slam::kMinMatchingRange);
 }
 

@@ -11,9 +11,10 @@
 namespace hmt::pipeline {
 
 // Resolves the "auto" options of `opt` from the first steps of `steps`,
-// which are held until the job takes them: at most
-// metric_slam::kRangeSampleScans steps, or until the first scan with a field
-// of view if that comes later (all of them only in a log without one). Says
+// which are held until the job takes them: until the range sample is
+// complete (at most metric_slam::kRangeSamplePeek steps), or until the first
+// scan with a field of view if that comes later (all of them only in a log
+// without one). Says
 // on stderr what it chose and why.
 void resolve_options_from_log(JobOptions& opt, InputSteps& steps);
 
