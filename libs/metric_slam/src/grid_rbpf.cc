@@ -134,7 +134,7 @@ bool GridRbpf::begin_step(const LogStep& input) {
                      opt_.update_angle)) {
     for (auto& p : particles_) {
       p.path.push_back(p.pose + pending_motion_);
-      p.estimates.push_back(p.estimates.back() + input.odometry_increment);
+      p.estimates.push_back(p.estimates.back() + u);
     }
     record_blind();
     ++stats_.skipped_steps;
