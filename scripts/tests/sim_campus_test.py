@@ -54,6 +54,17 @@ def read_robotlaser(prefix, first, fov, spacing):
     return scans, odo, ref
 
 
+def assert_steps_refused(test, script, out_dir, steps):
+    """`script OUT --step S` exits non-zero for each S of `steps`, naming the
+    option, and writes no log."""
+    for step in steps:
+        r = subprocess.run([sys.executable, script, os.path.join(out_dir, "z"), "--step", step],
+                           capture_output=True, text=True)
+        test.assertNotEqual(r.returncode, 0)
+        test.assertIn("--step", r.stderr)
+        test.assertFalse(os.path.exists(os.path.join(out_dir, "z.log.gz")))
+
+
 class SimCampus(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -156,12 +167,7 @@ class SimCampus(unittest.TestCase):
         self.assertLess(abs(fine_drift - coarse_drift), 0.5)
 
     def test_a_step_out_of_range_is_refused(self):
-        for step in ("0", "1.5"):
-            r = subprocess.run([sys.executable, SCRIPT, os.path.join(self.dir.name, "z"),
-                                "--step", step], capture_output=True, text=True)
-            self.assertNotEqual(r.returncode, 0)
-            self.assertIn("--step", r.stderr)
-            self.assertFalse(os.path.exists(os.path.join(self.dir.name, "z.log.gz")))
+        assert_steps_refused(self, SCRIPT, self.dir.name, ("0", "1.5"))
 
     def test_the_same_seed_writes_the_same_log(self):
         prefix = os.path.join(self.dir.name, "again")
