@@ -294,7 +294,8 @@ PartitionSummary run_partition(const PartitionJobOptions& options,
   area::resolve_tau(opt.area, log);  // tau = auto: from the sensor's field of view
   // max_range = auto: from the log's ranges.
   metric_slam::RangeSample ranges;
-  for (size_t i = 0; i < log.steps.size() && !ranges.complete(); ++i) ranges.add(log.steps[i].scan, log.steps[i].odometry_increment);
+  for (size_t i = 0; i < log.steps.size() && !ranges.complete(); ++i)
+    ranges.add(log.steps[i].scan, log.steps[i].odometry_increment);
   metric_slam::resolve_matching_range(opt.local_maps.matcher, opt.local_maps.insertion, ranges);
   const double read_s = since(t);
   t = Clock::now();

@@ -24,13 +24,14 @@
 // (the shared logs, thinned) or one every 10 cm (a laser recorded at 10 Hz,
 // where the first 100 scans are the first 10 m: one street corner). On the
 // simulated campus recorded every 10 cm the first 100 scans gave 34-51 m
-// where the same drive a scan a metre gives 46-64 m, and the maps were
-// 0.6-3.0 m off against 0.1-2.4 m. Spaced as the filter spaces its updates:
+// where the same drive a scan a metre gives 46-64 m, and its maps were
+// 0.6-3.0 m off (0.1-1.4 m with the metre-spaced sample; the drive a scan
+// a metre: 0.1-2.4 m). Spaced as the filter spaces its updates:
 // the scan nearest each metre (kRangeSampleSpacing less half the scan's
 // own step) or each kRangeSampleTurn of turn. A robot standing still adds
 // nothing, and the scans read for the sample are held until the run takes
 // them: at most kRangeSamplePeekReadings readings are read (about 10 MB of
-// scans; 11 000 scans of 181 beams, 1 850 of 1 081).
+// scans: 11 000 scans of 181 beams, 1 850 of 1 081 beams).
 #pragma once
 
 #include <cstddef>
