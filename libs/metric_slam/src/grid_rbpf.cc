@@ -11,6 +11,7 @@
 #include "hmt/common/log_sum_exp.h"
 #include "hmt/common/pose_gaussian.h"
 #include "hmt/grid/scan_insertion.h"
+#include "nearest_spacing.h"
 
 namespace hmt::metric_slam {
 
@@ -124,14 +125,11 @@ bool GridRbpf::begin_step(const LogStep& input) {
   // scan from (nearly) the same place adds little, and a robot standing
   // still must not make the filter resample on nothing. Skipped scans get
   // the dead-reckoned pose in each particle's path. The scan filtered is
-  // the one nearest the spacing, taking the next step to be as long as
-  // this one: a log thinned to about the spacing itself (steps a little
-  // short of it) is filtered whole, not every other scan.
+  // the one nearest the spacing (nearest_spacing.h).
   const Pose2D& u = input.odometry_increment;
   pending_motion_ = pending_motion_ + u;
   ++stats_.steps;
-  if (within_spacing(pending_motion_, opt_.update_distance - 0.5 * u.norm(),
-                     opt_.update_angle)) {
+  if (short_of_nearest_mark(pending_motion_, u, opt_.update_distance, opt_.update_angle)) {
     for (auto& p : particles_) {
       p.path.push_back(p.pose + pending_motion_);
       p.estimates.push_back(p.estimates.back() + u);

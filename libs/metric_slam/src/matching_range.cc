@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "nearest_spacing.h"
+
 namespace hmt::metric_slam {
 
 void RangeSample::add(const LaserScan& scan, const Pose2D& odometry_increment) {
@@ -10,8 +12,8 @@ void RangeSample::add(const LaserScan& scan, const Pose2D& odometry_increment) {
   ++read_;
   readings_read_ += scan.size();
   moved_ = moved_ + odometry_increment;
-  if (scans_ > 0 && within_spacing(moved_, kRangeSampleSpacing - 0.5 * odometry_increment.norm(),
-                                   kRangeSampleTurn))
+  if (scans_ > 0 &&
+      short_of_nearest_mark(moved_, odometry_increment, kRangeSampleSpacing, kRangeSampleTurn))
     return;
   moved_ = Pose2D();
   ++scans_;
