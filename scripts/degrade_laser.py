@@ -18,20 +18,14 @@ result (the scans are the same, one for one).
 Usage: degrade_laser.py IN.log[.gz] OUT.log[.gz] [--range M] [--fov DEG]
 """
 import argparse
-import gzip
 import math
-import os
 import sys
-import tempfile
 
 # A laser line's readings, and the beams' bearings as hmt-slam's CARMEN
 # reader takes them.
 sys.path.insert(0, __file__.rsplit("/", 1)[0])
+from log_files import open_text, replaced_at_end  # noqa: E402
 from map_sharpness import laser_readings  # noqa: E402
-
-
-def open_text(path, mode):
-    return gzip.open(path, mode + "t") if path.endswith(".gz") else open(path, mode)
 
 
 def laser_fields(s):
@@ -120,20 +114,12 @@ def main():
         ap.error("--range must be a positive number of metres")
     if a.fov is not None and not (0 < a.fov <= 360):
         ap.error("--fov must be in (0, 360] degrees")
-    # Written beside OUT and renamed at the end: a log that fails half way
-    # leaves no truncated OUT (nor spoils one already there).
-    fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(a.out)),
-                               suffix=".gz" if a.out.endswith(".gz") else "")
-    os.close(fd)
     try:
         code = f"{a.reach + 1.0:g}" if a.reach is not None else f"{largest_reading(a.inp):g}"
-        scans, changed, readings = write_degraded(a.inp, tmp, a.reach, a.fov, code)
-        os.replace(tmp, a.out)
+        with replaced_at_end(a.out) as tmp:
+            scans, changed, readings = write_degraded(a.inp, tmp, a.reach, a.fov, code)
     except (OSError, EOFError) as e:  # a missing, unreadable or damaged (gzip) log
         raise SystemExit(f"{a.inp}: {e}")
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
     share = 100.0 * changed / readings if readings else 0.0
     print(f"{a.out}: {scans} scans, {changed} of {readings} readings ({share:.1f} %) "
           f"made no-returns ({code} m)")

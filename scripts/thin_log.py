@@ -14,15 +14,13 @@ Usage: thin_log.py IN.log[.gz] OUT.log[.gz] --every K
                    [--reference IN_REF[.gz] OUT_REF[.gz]]
 """
 import argparse
-import gzip
-import os
-import tempfile
+import contextlib
+import sys
+
+sys.path.insert(0, __file__.rsplit("/", 1)[0])
+from log_files import open_text, replaced_at_end  # noqa: E402
 
 LASER = ("FLASER", "ROBOTLASER1")
-
-
-def open_text(path, mode):
-    return gzip.open(path, mode + "t") if path.endswith(".gz") else open(path, mode)
 
 
 def is_pose(line):
@@ -45,17 +43,11 @@ def thin(inp, out, every, keep):
     return kept, seen
 
 
-def atomic(inp, out, every, keep):
-    """thin() into a file beside OUT, renamed at the end: a run that fails
-    half way leaves no truncated OUT (nor spoils one already there)."""
-    fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(out)),
-                               suffix=".gz" if out.endswith(".gz") else "")
-    os.close(fd)
+def thin_or_exit(inp, out, every, keep):
+    """thin(), a missing, unreadable or damaged input a clear error."""
     try:
-        counts = thin(inp, tmp, every, keep)
-        return counts, tmp
-    except (OSError, EOFError, UnicodeDecodeError) as e:  # missing, unreadable, damaged
-        os.remove(tmp)
+        return thin(inp, out, every, keep)
+    except (OSError, EOFError, UnicodeDecodeError) as e:
         raise SystemExit(f"{inp}: {e}")
 
 
@@ -68,24 +60,19 @@ def main():
     a = ap.parse_args()
     if a.every < 1:
         ap.error("--every must be at least 1")
-    done = []
-    try:
-        (kept, scans), tmp = atomic(a.inp, a.out, a.every,
-                                    lambda line: line.split(" ", 1)[0] in LASER)
-        done.append((tmp, a.out))
+    # Both outputs are written beside their names and renamed only once both
+    # are whole: a run that fails leaves neither changed.
+    with contextlib.ExitStack() as outputs:
+        tmp = outputs.enter_context(replaced_at_end(a.out))
+        kept, scans = thin_or_exit(a.inp, tmp, a.every,
+                                   lambda line: line.split(" ", 1)[0] in LASER)
         if scans == 0:
             raise SystemExit(f"{a.inp}: no FLASER or ROBOTLASER1 line")
         if a.reference:
-            (_, poses), tmp = atomic(a.reference[0], a.reference[1], a.every, is_pose)
-            done.append((tmp, a.reference[1]))
+            tmp = outputs.enter_context(replaced_at_end(a.reference[1]))
+            _, poses = thin_or_exit(a.reference[0], tmp, a.every, is_pose)
             if poses != scans:
                 raise SystemExit(f"{a.reference[0]}: {poses} poses for the log's {scans} scans")
-        for tmp, out in done:
-            os.replace(tmp, out)
-    finally:
-        for tmp, _ in done:
-            if os.path.exists(tmp):
-                os.remove(tmp)
     print(f"{a.out}: {kept} of {scans} scans")
 
 

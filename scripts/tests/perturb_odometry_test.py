@@ -96,6 +96,23 @@ class PerturbOdometry(unittest.TestCase):
         r = run(bad, os.path.join(self.dir.name, "y"))
         self.assertNotEqual(r.returncode, 0)
         self.assertIn("bad.log:1", r.stderr)
+        r = run(os.path.join(self.dir.name, "missing.log"), os.path.join(self.dir.name, "z"))
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("missing.log", r.stderr)
+        self.assertNotIn("Traceback", r.stderr)
+
+    def test_a_log_that_fails_half_way_leaves_the_output_as_it_was(self):
+        out = os.path.join(self.dir.name, "kept.log")
+        with open(out, "w") as f:
+            f.write("an earlier output\n")
+        with open(self.log, "a") as f:
+            f.write("FLASER 2 1.0 2.0 0 0\n")  # line 6: no odometry
+        r = run(self.log, out, "--sxy", "0.1")
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("in.log:6", r.stderr)
+        with open(out) as f:
+            self.assertEqual(f.read(), "an earlier output\n")
+        self.assertEqual(sorted(os.listdir(self.dir.name)), ["in.log", "kept.log"])
 
 
 if __name__ == "__main__":
