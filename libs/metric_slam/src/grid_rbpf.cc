@@ -233,7 +233,9 @@ Pose2D GridRbpf::search_headings(const Particle& p, const Pose2D& u, const Match
     for (int sign : {1, -1}) {
       const Pose2D start(guess.x, guess.y, wrap_angle(guess.theta + sign * k * step));
       MatchScore s;
-      const Pose2D m = matcher_.optimize(p.map, start, scan, &s);
+      // As far off in position as the first start (propose()).
+      const Pose2D m =
+          matcher_.optimize(p.map, start, scan, &s, nullptr, motion_.distance_sigma(u));
       // A restart that climbs back to within one search step of the first
       // match found the same basin, refined: the hill climbing's own steps
       // settle that. Only another basin (a turn the odometry got wrong)
@@ -265,7 +267,11 @@ GridRbpf::Proposal GridRbpf::propose(const Particle& p) const {
   Proposal out;
   if (opt_.proposal != ProposalKind::kOptimal || n == 0) return out;
   MatchScore ms;
-  out.mode = matcher_.optimize(p.map, p.pose + u, *st.match, &ms);
+  // The match reaches as far as the step may have carried the robot off its
+  // odometry: the motion model's sigma for the distance (one sigma of a
+  // model wide on purpose, place()), so that a long step is matched too.
+  out.mode =
+      matcher_.optimize(p.map, p.pose + u, *st.match, &ms, nullptr, motion_.distance_sigma(u));
   // A scan with too few beams to weigh particles by cannot tell heading
   // basins apart either: a restart that lands one or two more far points
   // on some tree wins the untempered target, and the particle turns by a

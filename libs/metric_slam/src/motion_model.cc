@@ -25,6 +25,10 @@ MotionSigmas MotionModel::sigmas(const Pose2D& u) const {
           opt_.min_sigma_theta + opt_.stt * a + opt_.str * d};
 }
 
+double MotionModel::distance_sigma(const Pose2D& u) const {
+  return opt_.min_sigma_xy + opt_.srr * std::hypot(u.x, u.y);
+}
+
 Pose2D MotionModel::sample(const Pose2D& prev, const Pose2D& u, Random& rng) const {
   const MotionSigmas s = sigmas(u);
   const Pose2D noisy(u.x + rng.normal(0, s.xy), u.y + rng.normal(0, s.xy),

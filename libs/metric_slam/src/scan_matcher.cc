@@ -257,6 +257,11 @@ double ScanMatcher::heading_basin(double far, int window, double resolution) {
   return (window + 0.5) * resolution / std::max(far, 1e-9);
 }
 
+int ScanMatcher::window_reaching(double distance, double resolution) {
+  if (!(distance > 0.5 * resolution)) return 0;
+  return static_cast<int>(std::min<double>(kMaxWindow, std::ceil(distance / resolution - 0.5)));
+}
+
 bool ScanMatcher::steps_over_heading_basin(double far, double resolution) const {
   return far > 0 &&
          heading_basin(far, opt_.coarse_window, resolution) < 0.5 * finest_angular_step();
@@ -379,25 +384,48 @@ Pose2D ScanMatcher::optimize(const grid::OccupancyGrid& map, const Pose2D& start
 
 Pose2D ScanMatcher::optimize(const grid::OccupancyGrid& map, const Pose2D& start,
                              const MatchScan& ready, MatchScore* best_out,
-                             Eigen::Matrix3d* information_out) const {
+                             Eigen::Matrix3d* information_out, double start_error) const {
   const ScanPoints& scan = ready.points();
   // Coarse: an evenly spread subset of the beams.
   const ScanPoints& coarse = ready.coarse();
+  double best_ll = 0.0;
+  Pose2D best = hill_climb(map, start, coarse, opt_.coarse_window, &best_ll);
+  // A start farther off than the coarse window reaches (a long step of the
+  // odometry: a log with a scan every 2-3 m) leaves most beams without an
+  // obstacle in their window, and the climb without a slope to follow. A
+  // climb at the window that reaches that far brings the pose into the
+  // coarse window's basin, and a coarse climb from there competes with the
+  // one from the start: the higher wins. Not a replacement: at steps of a
+  // metre or so the wider window's optimum (farther obstacles pulling each
+  // beam) is often another basin, and the start's own climb fits better.
+  const int wide = window_reaching(start_error, map.resolution());
+  Pose2D from = start;
+  if (wide > opt_.coarse_window) {
+    double wide_ll = 0.0;
+    from = hill_climb(map, start, coarse, wide, &wide_ll);
+    if (from.x != start.x || from.y != start.y || from.theta != start.theta) {
+      double from_ll = 0.0;
+      const Pose2D reached = hill_climb(map, from, coarse, opt_.coarse_window, &from_ll);
+      if (from_ll > best_ll) {
+        best = reached;
+        best_ll = from_ll;
+      }
+    }
+  }
   // Far returns only (outdoors): the climb's heading moves step over the
   // basin the far points leave, and from a start a few mrad off it trades
   // the heading error for a sideways one fitted to the near points. So the
   // climb also starts from the best heading of a sweep at the basin's width
   // around the start (whose position, the odometry's, is good to
-  // centimetres), and the higher of the two climbs wins. Both, because a
-  // start farther off than the sweep reaches (a turn) is the climb's own.
-  double best_ll = 0.0;
-  Pose2D best = hill_climb(map, start, coarse, opt_.coarse_window, &best_ll);
+  // centimetres; or where the wide climb ended), and the higher of the
+  // climbs wins. Both, because a start farther off than the sweep reaches
+  // (a turn) is the climb's own.
   const double far = ready.far();
   if (steps_over_heading_basin(far, map.resolution())) {
     double swept_ll = 0.0;
     const Pose2D swept = hill_climb(
         map,
-        sweep_heading(map, start, coarse, opt_.coarse_window,
+        sweep_heading(map, from, coarse, opt_.coarse_window,
                       heading_basin(far, opt_.coarse_window, map.resolution())),
         coarse, opt_.coarse_window, &swept_ll);
     if (swept_ll > best_ll) best = swept;

@@ -28,6 +28,10 @@ class MotionModel {
  public:
   explicit MotionModel(const MotionOptions& opt) : opt_(opt) {}
   MotionSigmas sigmas(const Pose2D& u) const;
+  // The part of sigmas(u).xy that grows with the distance travelled,
+  // min_sigma_xy + srr |u|: how far the step may have carried the robot
+  // from where its odometry says, which the scan match must reach.
+  double distance_sigma(const Pose2D& u) const;
   Pose2D sample(const Pose2D& prev, const Pose2D& u, Random& rng) const;
   // log p(x | prev, u) up to a constant that depends only on u.
   double log_density(const Pose2D& prev, const Pose2D& u, const Pose2D& x) const;

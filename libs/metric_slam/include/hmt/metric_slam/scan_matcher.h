@@ -98,9 +98,14 @@ class ScanMatcher {
   // -log p(z|x,m) at the result, J^T J / sigma^2 over the beams matched
   // there (point-to-hit-mean residuals): how sharply the scan pins the pose
   // down. The last Gauss-Newton pass has already summed it.
+  // `start_error` (m): how far the start may be from the true pose (a
+  // filter step's odometry error). Where it lies beyond the reach of the
+  // climb's window, a climb at the window that reaches it
+  // (window_reaching()) and one at the coarse window from where that ended
+  // compete with the climb from the start: the higher scoring wins.
   Pose2D optimize(const grid::OccupancyGrid& map, const Pose2D& start,
                   const MatchScan& scan, MatchScore* best,
-                  Eigen::Matrix3d* information = nullptr) const;
+                  Eigen::Matrix3d* information = nullptr, double start_error = 0.0) const;
   // The same for a scan matched once (made ready here).
   Pose2D optimize(const grid::OccupancyGrid& map, const Pose2D& start,
                   const ScanPoints& scan, MatchScore* best,
@@ -114,6 +119,9 @@ class ScanMatcher {
   // and no longer guides the match. A scan's basin is that of its far points
   // (far_range()), which pin the heading down most sharply.
   static double heading_basin(double far, int window, double resolution);
+  // The least window (cells, at most kMaxWindow) whose reach, (window + 0.5)
+  // cells, is at least `distance`.
+  static int window_reaching(double distance, double resolution);
   // Whether the basin (at the hill climbing's window) of a scan whose far
   // points lie at `far` is narrower than half the climb's last angular step.
   // A move of that step then lands outside the basin from any side, so the
