@@ -269,7 +269,8 @@ GridRbpf::Proposal GridRbpf::propose(const Particle& p) const {
   MatchScore ms;
   // The match reaches as far as the step may have carried the robot off its
   // odometry: the motion model's sigma for the distance (one sigma of a
-  // model wide on purpose, place()), so that a long step is matched too.
+  // model wide on purpose, place()). Beyond the climb's own reach only: a
+  // step of 2.4 m or more at the defaults.
   out.mode =
       matcher_.optimize(p.map, p.pose + u, *st.match, &ms, nullptr, motion_.distance_sigma(u));
   // A scan with too few beams to weigh particles by cannot tell heading

@@ -136,10 +136,10 @@ TEST(ScanMatcher, IndoorScansDoNotStepOverTheirHeadingBasin) {
 }
 
 // A scan every 3 m: the odometry may be 0.3 m off (the motion model's
-// sigma for the distance), where the coarse window reaches 0.125 m. Most
-// beams then find no obstacle and the climb stalls short of the pose. Told
-// how far off the start may be, the match first climbs at a window that
-// reaches that far.
+// sigma for the distance), where the coarse window reaches 0.125 m and the
+// climb about twice that. Most beams then find no obstacle and the climb
+// stalls short of the pose. Told how far off the start may be, the match
+// also climbs at a window that reaches that far.
 TEST(ScanMatcher, AStartAsFarOffAsALongStepIsReached) {
   EXPECT_EQ(ScanMatcher::window_reaching(0.0, 0.05), 0);
   EXPECT_EQ(ScanMatcher::window_reaching(0.11, 0.05), 2);   // a metre's step
@@ -174,8 +174,14 @@ TEST(ScanMatcher, AStartAsFarOffAsALongStepIsReached) {
         const double a = k * M_PI / 4 + 0.2;
         const Pose2D start(truth.x + r * std::cos(a), truth.y + r * std::sin(a), truth.theta + h);
         MatchScore score;
-        plain += reached(m.optimize(map, start, ready, &score));
+        const Pose2D alone = m.optimize(map, start, ready, &score);
+        plain += reached(alone);
         told += reached(m.optimize(map, start, ready, &score, nullptr, 0.31));
+        // Within twice the coarse window's reach the climb is left alone.
+        const Pose2D within = m.optimize(map, start, ready, &score, nullptr, 0.24);
+        EXPECT_EQ(within.x, alone.x);
+        EXPECT_EQ(within.y, alone.y);
+        EXPECT_EQ(within.theta, alone.theta);
       }
   // Measured: 108 reached when told, 55 by the climb alone.
   EXPECT_GE(told, 100);

@@ -99,10 +99,11 @@ class ScanMatcher {
   // there (point-to-hit-mean residuals): how sharply the scan pins the pose
   // down. The last Gauss-Newton pass has already summed it.
   // `start_error` (m): how far the start may be from the true pose (a
-  // filter step's odometry error). Where it lies beyond the reach of the
-  // climb's window, a climb at the window that reaches it
-  // (window_reaching()) and one at the coarse window from where that ended
-  // compete with the climb from the start: the higher scoring wins.
+  // filter step's odometry error). Where it lies beyond what the climb
+  // reaches by itself (twice its window's reach), a climb at the window
+  // that reaches it (window_reaching()) and one at the coarse window from
+  // where that ended compete with the climb from the start: the higher
+  // scoring wins.
   Pose2D optimize(const grid::OccupancyGrid& map, const Pose2D& start,
                   const MatchScan& scan, MatchScore* best,
                   Eigen::Matrix3d* information = nullptr, double start_error = 0.0) const;
