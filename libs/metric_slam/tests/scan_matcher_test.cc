@@ -12,13 +12,20 @@
 namespace hmt::metric_slam {
 namespace {
 
+// The office world's map as three noiseless 361-beam scans from `at` see it.
+grid::OccupancyGrid map_seen_from(const std::vector<testing_sim::Segment>& world,
+                                  const Pose2D& at) {
+  grid::OccupancyGrid map(0.05);
+  for (int k = 0; k < 3; ++k)
+    grid::insert_scan(map, at, testing_sim::cast_scan(world, at, 361, M_PI, 30, nullptr, 0),
+                      grid::InsertionOptions());
+  return map;
+}
+
 TEST(ScanMatcher, RecoversAKnownOffset) {
   const auto world = testing_sim::office_world();
-  grid::OccupancyGrid map(0.05);
   const Pose2D truth(4.0, 3.0, 0.3);
-  grid::InsertionOptions ins;
-  for (int k = 0; k < 3; ++k)
-    grid::insert_scan(map, truth, testing_sim::cast_scan(world, truth, 361, M_PI, 30, nullptr, 0), ins);
+  const grid::OccupancyGrid map = map_seen_from(world, truth);
   MatcherOptions opt;
   ScanMatcher m(opt);
   Random rng(3);
@@ -148,11 +155,8 @@ TEST(ScanMatcher, AStartAsFarOffAsALongStepIsReached) {
   EXPECT_EQ(ScanMatcher::window_reaching(0.31, 0.05), kMaxWindow);  // 6, capped
   EXPECT_EQ(ScanMatcher::window_reaching(std::nan(""), 0.05), 0);
   const auto world = testing_sim::office_world();
-  grid::OccupancyGrid map(0.05);
   const Pose2D truth(4.0, 3.0, 0.3);
-  grid::InsertionOptions ins;
-  for (int k = 0; k < 3; ++k)
-    grid::insert_scan(map, truth, testing_sim::cast_scan(world, truth, 361, M_PI, 30, nullptr, 0), ins);
+  const grid::OccupancyGrid map = map_seen_from(world, truth);
   MatcherOptions opt;
   const ScanMatcher m(opt);
   Random rng(5);
