@@ -49,6 +49,10 @@ class FieldSum {
   int matched_ = 0;
 };
 
+// How far from a beam's end point a search window of `window` cells finds
+// obstacles: to the edge of its outer cells, (window + 0.5) cells.
+double window_reach(int window, double resolution) { return (window + 0.5) * resolution; }
+
 // A cell's two coordinates as one integer, to compare cells in one step.
 uint64_t cell_key(grid::CellIndex c) {
   return static_cast<uint64_t>(static_cast<uint32_t>(c.x)) << 32 | static_cast<uint32_t>(c.y);
@@ -254,7 +258,7 @@ double ScanMatcher::finest_angular_step() const { return finest_step(opt_.angula
 double ScanMatcher::finest_linear_step() const { return finest_step(opt_.linear_step); }
 
 double ScanMatcher::heading_basin(double far, int window, double resolution) {
-  return (window + 0.5) * resolution / std::max(far, 1e-9);
+  return window_reach(window, resolution) / std::max(far, 1e-9);
 }
 
 // How far off a start the climb at a window still reaches, in multiples of
@@ -409,7 +413,7 @@ Pose2D ScanMatcher::optimize(const grid::OccupancyGrid& map, const Pose2D& start
   // logs a metre a scan (docs/measurements.md, "A log with a scan every
   // 2-3 m"), some better, more of them worse.
   Pose2D from = start;
-  if (start_error > kClimbCapture * (opt_.coarse_window + 0.5) * map.resolution()) {
+  if (start_error > kClimbCapture * window_reach(opt_.coarse_window, map.resolution())) {
     double wide_ll = 0.0;
     from = hill_climb(map, start, coarse, window_reaching(start_error, map.resolution()),
                       &wide_ll);
